@@ -1,0 +1,13 @@
+# Installs the exported targets and moteConfig.cmake (+ version file), so that an outside project
+# writes find_package(mote REQUIRED) and target_link_libraries(app PRIVATE mote::mote).
+include(CMakePackageConfigHelpers)
+set(MOTE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/mote)
+
+install(EXPORT moteTargets NAMESPACE mote:: DESTINATION ${MOTE_CMAKE_DIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/moteConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/moteConfig.cmake INSTALL_DESTINATION ${MOTE_CMAKE_DIR})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/moteConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/moteConfig.cmake ${PROJECT_BINARY_DIR}/moteConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/FindLZ4.cmake
+        DESTINATION ${MOTE_CMAKE_DIR})

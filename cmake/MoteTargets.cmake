@@ -1,0 +1,61 @@
+# Helpers that give every mote target the same shape: C++20, warnings, optional -march=native,
+# public headers in <folder>/include, exported as mote::<name>.
+
+set(MOTE_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion)
+
+# Warnings, -Werror and -march=native for a target of mote's own (never PUBLIC).
+function(mote_target_options target)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+  target_compile_options(${target} PRIVATE ${MOTE_WARNINGS})
+  if(MOTE_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(MOTE_NATIVE)
+    target_compile_options(${target} PRIVATE -march=native)
+  endif()
+endfunction()
+
+# Sanitizers must instrument every translation unit and the final link, so they are the one
+# setting applied directory-wide.
+macro(mote_apply_sanitizers)
+  if(MOTE_SANITIZE)
+    string(REPLACE ";" "," _mote_san "${MOTE_SANITIZE}")
+    add_compile_options(-fsanitize=${_mote_san} -fno-omit-frame-pointer -fno-sanitize-recover=all)
+    add_link_options(-fsanitize=${_mote_san})
+  endif()
+endmacro()
+
+# mote_add_library(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# Creates mote_<name> with alias mote::<name>, headers in ${CMAKE_CURRENT_SOURCE_DIR}/include.
+function(mote_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(mote_${name} ${ARG_SOURCES})
+  add_library(mote::${name} ALIAS mote_${name})
+  set_target_properties(mote_${name} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME mote_${name}
+                                                POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(mote_${name} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_link_libraries(mote_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  mote_target_options(mote_${name})
+  install(TARGETS mote_${name} EXPORT moteTargets)
+  install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endfunction()
+
+# mote_add_test(<name> SOURCES ... [LIBS ...]): a GoogleTest executable registered with ctest.
+function(mote_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} mote_test_support GTest::gtest_main)
+  mote_target_options(${name})
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
+                       PROPERTIES ENVIRONMENT "MOTE_DATA_DIR=${MOTE_DATA_DIR}")
+endfunction()
+
+# mote_add_bench(<name> SOURCES ... [LIBS ...]): a Google Benchmark executable.
+function(mote_add_bench name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} mote_bench_support benchmark::benchmark)
+  mote_target_options(${name})
+endfunction()
