@@ -1,0 +1,92 @@
+#include "mote/maps/occupancy_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "mote/core/error.hpp"
+
+namespace mote {
+
+namespace {
+void check_shape(int width, int height, double resolution, std::size_t cell_count) {
+  if (width <= 0 || height <= 0) {
+    throw ConfigError("occupancy grid: width and height must be positive, got " +
+                      std::to_string(width) + " x " + std::to_string(height));
+  }
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw ConfigError("occupancy grid: resolution must be a positive number of metres, got " +
+                      std::to_string(resolution));
+  }
+  const auto expected = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (cell_count != expected) {
+    throw ConfigError("occupancy grid: expected " + std::to_string(expected) + " cells, got " +
+                      std::to_string(cell_count));
+  }
+  if (expected > std::size_t{0xFFFFFFFFU}) {
+    throw ConfigError("occupancy grid: more than 2^32 cells is not supported");
+  }
+}
+}  // namespace
+
+OccupancyGrid::OccupancyGrid(int width, int height, double resolution, Pose2 origin,
+                             std::vector<CellState> cells)
+    : width_(width),
+      height_(height),
+      resolution_(resolution),
+      origin_(origin),
+      cos_yaw_(std::cos(origin.theta)),
+      sin_yaw_(std::sin(origin.theta)),
+      cells_(std::move(cells)) {
+  check_shape(width, height, resolution, cells_.size());
+  for (std::size_t k = 0; k < cells_.size(); ++k) {
+    if (cells_[k] == CellState::kFree) free_.push_back(static_cast<std::uint32_t>(k));
+  }
+}
+
+Point2 OccupancyGrid::to_grid_frame(Point2 world) const noexcept {
+  const double dx = world.x - origin_.x;
+  const double dy = world.y - origin_.y;
+  return {cos_yaw_ * dx + sin_yaw_ * dy, -sin_yaw_ * dx + cos_yaw_ * dy};
+}
+
+Point2 OccupancyGrid::to_map_frame(Point2 grid) const noexcept {
+  return {origin_.x + cos_yaw_ * grid.x - sin_yaw_ * grid.y,
+          origin_.y + sin_yaw_ * grid.x + cos_yaw_ * grid.y};
+}
+
+CellIndex OccupancyGrid::world_to_cell(Point2 world) const noexcept {
+  const Point2 g = to_grid_frame(world);
+  // Clamp before converting so points far off the map never overflow int.
+  const double limit = 1e9;
+  const double ci = std::clamp(std::floor(g.x / resolution_), -limit, limit);
+  const double cj = std::clamp(std::floor(g.y / resolution_), -limit, limit);
+  return {static_cast<int>(ci), static_cast<int>(cj)};
+}
+
+Point2 OccupancyGrid::cell_center(CellIndex c) const noexcept {
+  return to_map_frame({(c.i + 0.5) * resolution_, (c.j + 0.5) * resolution_});
+}
+
+Point2 OccupancyGrid::free_point(std::size_t k, double u, double v) const noexcept {
+  const std::uint32_t cell = free_[k];
+  const auto w = static_cast<std::uint32_t>(width_);
+  const double gi = static_cast<double>(cell % w) + u;
+  const double gj = static_cast<double>(cell / w) + v;
+  return to_map_frame({gi * resolution_, gj * resolution_});
+}
+
+Bounds2 OccupancyGrid::bounds() const noexcept {
+  const double w = width_ * resolution_;
+  const double h = height_ * resolution_;
+  Bounds2 b{origin_.x, origin_.y, origin_.x, origin_.y};
+  for (const Point2 corner : {to_map_frame({w, 0}), to_map_frame({0, h}), to_map_frame({w, h})}) {
+    b.min_x = std::min(b.min_x, corner.x);
+    b.min_y = std::min(b.min_y, corner.y);
+    b.max_x = std::max(b.max_x, corner.x);
+    b.max_y = std::max(b.max_y, corner.y);
+  }
+  return b;
+}
+
+}  // namespace mote
