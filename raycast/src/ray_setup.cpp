@@ -1,0 +1,98 @@
+#include "ray_setup.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "mote/core/error.hpp"
+
+namespace mote::detail {
+
+std::vector<std::uint8_t> blocking_mask(const OccupancyGrid& grid, bool unknown_blocks) {
+  std::vector<std::uint8_t> mask(grid.cell_count());
+  const auto& cells = grid.cells();
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const bool blocks =
+        cells[k] == CellState::kOccupied || (unknown_blocks && cells[k] == CellState::kUnknown);
+    mask[k] = blocks ? 1 : 0;
+  }
+  return mask;
+}
+
+bool CellMask::blocks_point(double gx, double gy) const noexcept {
+  const double fi = std::floor(gx / resolution);
+  const double fj = std::floor(gy / resolution);
+  // Written so that NaN compares false and leaves the point off the map.
+  const bool inside = fi >= 0.0 && fj >= 0.0 && fi < width && fj < height;
+  return inside && blocks(static_cast<int>(fi), static_cast<int>(fj));
+}
+
+GridFrame::GridFrame(const Pose2& origin) noexcept
+    : origin_(origin), c_(std::cos(origin.theta)), s_(std::sin(origin.theta)) {}
+
+Point2 GridFrame::to_grid(double x, double y) const noexcept {
+  const double dx = x - origin_.x;
+  const double dy = y - origin_.y;
+  return {c_ * dx + s_ * dy, -s_ * dx + c_ * dy};
+}
+
+GridRay GridFrame::ray(Point2 origin, double angle) const noexcept {
+  const Point2 g = to_grid(origin.x, origin.y);
+  const double a = angle - origin_.theta;
+  return {g.x, g.y, std::cos(a), std::sin(a)};
+}
+
+void check_max_range(float max_range) {
+  if (!(max_range > 0.0F) || !std::isfinite(max_range)) {
+    throw ConfigError("ray cast: max_range must be a positive number of metres, got " +
+                      std::to_string(max_range));
+  }
+}
+
+namespace {
+void check_batch(const RayBatch& batch, std::size_t ranges_size) {
+  if (batch.y.size() != batch.x.size() || batch.theta.size() != batch.x.size()) {
+    throw ConfigError("ray cast: x, y and theta must hold one value per particle (got " +
+                      std::to_string(batch.x.size()) + ", " + std::to_string(batch.y.size()) +
+                      ", " + std::to_string(batch.theta.size()) + ")");
+  }
+  if (ranges_size != batch.ray_count()) {
+    throw ConfigError(
+        "ray cast: ranges must hold particles * beams = " + std::to_string(batch.ray_count()) +
+        " values, got " + std::to_string(ranges_size));
+  }
+  check_max_range(batch.max_range);
+  if (!is_finite(batch.sensor_offset)) {
+    throw ConfigError("ray cast: the sensor offset must be finite");
+  }
+}
+}  // namespace
+
+BatchRays::BatchRays(const GridFrame& frame, const RayBatch& batch, std::size_t ranges_size)
+    : frame_(frame), batch_(batch) {
+  check_batch(batch, ranges_size);
+  beam_cos_.reserve(batch.beam_count());
+  beam_sin_.reserve(batch.beam_count());
+  for (const float angle : batch.beam_angles) {
+    if (!std::isfinite(angle)) throw ConfigError("ray cast: beam angles must be finite");
+    beam_cos_.push_back(std::cos(static_cast<double>(angle)));
+    beam_sin_.push_back(std::sin(static_cast<double>(angle)));
+  }
+}
+
+SensorFrame BatchRays::sensor(std::size_t particle) const noexcept {
+  const double px = batch_.x[particle];
+  const double py = batch_.y[particle];
+  const double pt = batch_.theta[particle];
+  // Sensor pose = particle pose (+) mounting offset (Thrun table 6.3, the sensor's x_k,sens), then
+  // the grid frame; the heading is taken relative to the grid's yaw.
+  const Pose2& off = batch_.sensor_offset;
+  const double pc = std::cos(pt);
+  const double ps = std::sin(pt);
+  const Point2 g = frame_.to_grid(px + pc * off.x - ps * off.y, py + ps * off.x + pc * off.y);
+  const double heading = pt + off.theta - frame_.origin().theta;
+  SensorFrame f{g.x, g.y, std::cos(heading), std::sin(heading), true};
+  f.finite = std::isfinite(f.ox) && std::isfinite(f.oy) && std::isfinite(f.c);
+  return f;
+}
+
+}  // namespace mote::detail
