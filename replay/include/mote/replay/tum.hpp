@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// TUM RGB-D trajectory files: one pose per line, `timestamp x y z qx qy qz qw`. Planar poses
+/// take yaw from the quaternion and are written with z = 0 and a rotation about z only.
+
+#include <filesystem>
+#include <iosfwd>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mote/core/pose.hpp"
+
+namespace mote::replay {
+
+/// One trajectory entry.
+struct StampedPose {
+  double stamp = 0.0;  ///< s
+  Pose2 pose;          ///< m, rad
+
+  friend bool operator==(const StampedPose&, const StampedPose&) = default;
+};
+
+/// Reads a TUM trajectory; `name` is used in error messages. Blank lines and `#` comments are
+/// skipped. Throws InputError (name, line) on wrong field counts, bad or non-finite numbers, or
+/// a quaternion of zero length.
+[[nodiscard]] std::vector<StampedPose> read_tum(std::istream& in, const std::string& name);
+
+/// Reads a TUM trajectory file. Throws InputError if it cannot be opened or is malformed.
+[[nodiscard]] std::vector<StampedPose> read_tum(const std::filesystem::path& path);
+
+/// Writes poses, stamps with 9 decimals (ns) and positions with 6 (um), so stamps round-trip.
+void write_tum(std::ostream& out, std::span<const StampedPose> poses);
+
+/// Writes a TUM trajectory file. Throws mote::Error if the file cannot be written.
+void write_tum(const std::filesystem::path& path, std::span<const StampedPose> poses);
+
+/// Yaw (rad, wrapped) of the unit quaternion (qx, qy, qz, qw); Z-Y-X convention.
+[[nodiscard]] double yaw_from_quaternion(double qx, double qy, double qz, double qw) noexcept;
+
+}  // namespace mote::replay

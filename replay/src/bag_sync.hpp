@@ -1,0 +1,61 @@
+#pragma once
+/// \file
+/// Pairs bag scans with odometry and the laser mounting pose. Scans wait until odometry at or
+/// after their stamp has arrived, then take the pose interpolated between the two odometry
+/// messages around the stamp (nearest one at the ends of the recording), and the mounting pose
+/// from the latest transforms base -> ... -> scan frame.
+
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bag_messages.hpp"
+#include "mote/replay/scan_source.hpp"
+
+namespace mote::replay::detail {
+
+class ScanSync {
+ public:
+  /// `odom_frame` names the odometry frame when odometry comes from tf.
+  explicit ScanSync(std::string odom_frame) : odom_frame_(std::move(odom_frame)) {}
+
+  /// When true, odometry comes from nav_msgs/Odometry messages and tf odom poses are ignored.
+  void use_odometry_topic() {
+    if (!from_topic_) odom_.clear();
+    from_topic_ = true;
+  }
+
+  void add_scan(ScanMessage scan) { pending_.push_back(std::move(scan)); }
+  void add_odometry(const OdometryMessage& odom);
+  void add_transforms(const std::vector<TransformMessage>& transforms);
+
+  /// Moves every scan that is ready into `out`; at the end of the input every pending scan is
+  /// ready. Returns false when scans are pending at the end and there is no odometry at all.
+  bool flush(std::deque<ScanFrame>& out, bool at_end);
+
+ private:
+  struct Stamped {
+    double stamp;
+    Pose2 pose;
+  };
+  struct Link {
+    std::string parent;
+    Pose2 pose;
+  };
+
+  void push_odometry(double stamp, const Pose2& pose);
+  [[nodiscard]] Pose2 odometry_at(double stamp) const;
+  [[nodiscard]] std::optional<Pose2> mount(const std::string& frame) const;
+  [[nodiscard]] bool is_base(const std::string& frame) const;
+
+  std::string odom_frame_;
+  std::string base_frame_;
+  bool from_topic_ = false;
+  std::deque<Stamped> odom_;
+  std::map<std::string, Link> links_;
+  std::deque<ScanMessage> pending_;
+};
+
+}  // namespace mote::replay::detail
