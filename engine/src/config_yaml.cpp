@@ -1,0 +1,218 @@
+// Reads LocalizerConfig from YAML: a flat map of amcl-named keys, or a nav2 params file with its
+// `amcl: ros__parameters:` section.
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string_view>
+
+#include "mote/core/error.hpp"
+#include "mote/engine/localizer_config.hpp"
+
+namespace mote {
+
+namespace {
+
+using Setter = std::function<void(LocalizerConfig&, const YAML::Node&)>;
+
+struct Key {
+  std::string_view name;
+  std::string_view expected;  // for error messages
+  Setter set;
+};
+
+template <class T, class Field>
+Key field(std::string_view name, std::string_view expected, Field LocalizerConfig::*member) {
+  return {name, expected,
+          [member](LocalizerConfig& c, const YAML::Node& n) { c.*member = n.as<T>(); }};
+}
+
+LaserModel parse_laser_model(const std::string& s) {
+  // amcl's likelihood_field_prob adds beam skipping on top of the likelihood field.
+  if (s == "likelihood_field" || s == "likelihood_field_prob") return LaserModel::kLikelihoodField;
+  if (s == "beam") return LaserModel::kBeam;
+  throw YAML::BadConversion(YAML::Mark::null_mark());
+}
+
+OdomModel parse_odom_model(const std::string& s) {
+  if (s == "diff" || s == "diff-corrected" || s == "differential" ||
+      s == "nav2_amcl::DifferentialMotionModel") {
+    return OdomModel::kDiff;
+  }
+  if (s == "omni" || s == "omni-corrected" || s == "omnidirectional" ||
+      s == "nav2_amcl::OmniMotionModel") {
+    return OdomModel::kOmni;
+  }
+  if (s == "ackermann") return OdomModel::kAckermann;
+  throw YAML::BadConversion(YAML::Mark::null_mark());
+}
+
+LikelihoodCombination parse_combination(const std::string& s) {
+  if (s == "product") return LikelihoodCombination::kProduct;
+  if (s == "amcl") return LikelihoodCombination::kAmclCubedSum;
+  throw YAML::BadConversion(YAML::Mark::null_mark());
+}
+
+Key enum_key(std::string_view name, std::string_view expected,
+             std::function<void(LocalizerConfig&, const std::string&)> set) {
+  return {name, expected, [set = std::move(set)](LocalizerConfig& c, const YAML::Node& n) {
+            set(c, n.as<std::string>());
+          }};
+}
+
+const std::vector<Key>& keys() {
+  static const std::vector<Key> table = [] {
+    constexpr std::string_view kNum = "a number";
+    constexpr std::string_view kInt = "an integer";
+    constexpr std::string_view kBool = "true or false";
+    std::vector<Key> k{
+        field<int>("min_particles", kInt, &LocalizerConfig::min_particles),
+        field<int>("max_particles", kInt, &LocalizerConfig::max_particles),
+        field<double>("pf_err", kNum, &LocalizerConfig::pf_err),
+        field<double>("pf_z", kNum, &LocalizerConfig::pf_z),
+        field<bool>("kld_z_is_quantile", kBool, &LocalizerConfig::kld_z_is_quantile),
+        field<double>("kld_bin_xy", kNum, &LocalizerConfig::kld_bin_xy),
+        field<double>("kld_bin_theta", kNum, &LocalizerConfig::kld_bin_theta),
+        field<int>("resample_interval", kInt, &LocalizerConfig::resample_interval),
+        field<double>("resample_ess_fraction", kNum, &LocalizerConfig::resample_ess_fraction),
+        field<double>("recovery_alpha_slow", kNum, &LocalizerConfig::recovery_alpha_slow),
+        field<double>("recovery_alpha_fast", kNum, &LocalizerConfig::recovery_alpha_fast),
+        field<double>("update_min_d", kNum, &LocalizerConfig::update_min_d),
+        field<double>("update_min_a", kNum, &LocalizerConfig::update_min_a),
+        field<bool>("amcl_motion_conventions", kBool, &LocalizerConfig::amcl_motion_conventions),
+        field<double>("alpha1", kNum, &LocalizerConfig::alpha1),
+        field<double>("alpha2", kNum, &LocalizerConfig::alpha2),
+        field<double>("alpha3", kNum, &LocalizerConfig::alpha3),
+        field<double>("alpha4", kNum, &LocalizerConfig::alpha4),
+        field<double>("alpha5", kNum, &LocalizerConfig::alpha5),
+        field<double>("wheelbase", kNum, &LocalizerConfig::wheelbase),
+        field<int>("max_beams", kInt, &LocalizerConfig::max_beams),
+        field<double>("laser_min_range", kNum, &LocalizerConfig::laser_min_range),
+        field<double>("laser_max_range", kNum, &LocalizerConfig::laser_max_range),
+        field<double>("z_hit", kNum, &LocalizerConfig::z_hit),
+        field<double>("z_short", kNum, &LocalizerConfig::z_short),
+        field<double>("z_max", kNum, &LocalizerConfig::z_max),
+        field<double>("z_rand", kNum, &LocalizerConfig::z_rand),
+        field<double>("sigma_hit", kNum, &LocalizerConfig::sigma_hit),
+        field<double>("lambda_short", kNum, &LocalizerConfig::lambda_short),
+        field<double>("laser_likelihood_max_dist", kNum,
+                      &LocalizerConfig::laser_likelihood_max_dist),
+        field<double>("likelihood_tempering", kNum, &LocalizerConfig::likelihood_tempering),
+        field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
+        field<int>("threads", kInt, &LocalizerConfig::threads),
+        field<std::uint64_t>("seed", kInt, &LocalizerConfig::seed),
+        field<std::size_t>("grain", kInt, &LocalizerConfig::grain),
+        enum_key("laser_model_type", "likelihood_field, likelihood_field_prob or beam",
+                 [](LocalizerConfig& c, const std::string& s) {
+                   c.laser_model_type = parse_laser_model(s);
+                 }),
+        enum_key("odom_model_type", "diff, omni, diff-corrected, omni-corrected or ackermann",
+                 [](LocalizerConfig& c, const std::string& s) {
+                   c.odom_model_type = parse_odom_model(s);
+                 }),
+        enum_key("robot_model_type",
+                 "nav2_amcl::DifferentialMotionModel or nav2_amcl::OmniMotionModel",
+                 [](LocalizerConfig& c, const std::string& s) {
+                   c.odom_model_type = parse_odom_model(s);
+                 }),
+        enum_key("likelihood_combination", "product or amcl",
+                 [](LocalizerConfig& c, const std::string& s) {
+                   c.likelihood_combination = parse_combination(s);
+                 }),
+        {"selective_resampling", kBool,
+         [](LocalizerConfig& c, const YAML::Node& n) {
+           // amcl's selective resampling is the N/2 effective-sample-size rule; off = always.
+           c.resample_ess_fraction = n.as<bool>() ? 0.5 : 1.0;
+         }},
+    };
+    return k;
+  }();
+  return table;
+}
+
+// ROS plumbing that has no meaning for a library: accepted without a warning.
+constexpr std::array<std::string_view, 17> kRosOnlyKeys{
+    "base_frame_id",   "global_frame_id",       "odom_frame_id",       "scan_topic",
+    "map_topic",       "tf_broadcast",          "transform_tolerance", "use_sim_time",
+    "save_pose_rate",  "set_initial_pose",      "initial_pose",        "always_reset_initial_pose",
+    "first_map_only",  "bond_heartbeat_period", "use_map_topic",       "gui_publish_rate",
+    "restore_defaults"};
+
+bool is_ros_only(std::string_view key) {
+  for (std::string_view k : kRosOnlyKeys) {
+    if (k == key) return true;
+  }
+  return false;
+}
+
+std::string place_of(const YAML::Node& node, const std::string& key) {
+  return "line " + std::to_string(node.Mark().line + 1) + ", key '" + key + "'";
+}
+
+void apply_key(LocalizerConfig& config, const std::string& key, const YAML::Node& value,
+               const std::string& name, std::vector<std::string>& warnings) {
+  for (const Key& k : keys()) {
+    if (k.name != key) continue;
+    try {
+      k.set(config, value);
+    } catch (const YAML::Exception&) {
+      throw InputError(name, place_of(value, key), "expected " + std::string(k.expected));
+    }
+    if (key == "laser_model_type" && value.as<std::string>() == "likelihood_field_prob") {
+      warnings.push_back(name + ": " + place_of(value, key) +
+                         ": beam skipping is not implemented; using likelihood_field");
+    }
+    return;
+  }
+  if (key.starts_with("beam_skip") || key == "do_beamskip") {
+    warnings.push_back(name + ": " + place_of(value, key) +
+                       ": beam skipping is not implemented; key ignored");
+  } else if (!is_ros_only(key)) {
+    warnings.push_back(name + ": " + place_of(value, key) + ": unknown key ignored");
+  }
+}
+
+// The map that holds the parameters: nav2's amcl/ros__parameters, ROS 1's amcl, or the root.
+YAML::Node parameter_map(const YAML::Node& root) {
+  if (root["amcl"] && root["amcl"].IsMap()) {
+    const YAML::Node amcl = root["amcl"];
+    return amcl["ros__parameters"] ? amcl["ros__parameters"] : amcl;
+  }
+  return root;
+}
+
+}  // namespace
+
+LoadedConfig parse_config(const std::string& yaml_text, const std::string& name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(name, "line " + std::to_string(e.mark.line + 1), "invalid YAML: " + e.msg);
+  }
+  LoadedConfig loaded;
+  if (root.IsNull()) return loaded;
+  const YAML::Node params = parameter_map(root);
+  if (!params.IsMap()) throw InputError(name, "", "expected a map of parameters");
+  for (const auto& entry : params) {
+    apply_key(loaded.config, entry.first.as<std::string>(), entry.second, name, loaded.warnings);
+  }
+  try {
+    loaded.config.validate();
+  } catch (const ConfigError& e) {
+    throw InputError(name, "", e.what());
+  }
+  return loaded;
+}
+
+LoadedConfig load_config(const std::filesystem::path& yaml) {
+  std::ifstream in(yaml);
+  if (!in) throw InputError(yaml.string(), "", "cannot open the configuration file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_config(text.str(), yaml.string());
+}
+
+}  // namespace mote

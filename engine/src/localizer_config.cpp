@@ -1,0 +1,78 @@
+#include <cmath>
+#include <string>
+
+#include "mote/core/error.hpp"
+#include "mote/engine/localizer_config.hpp"
+
+namespace mote {
+
+namespace {
+
+void require(bool ok, const char* field, const std::string& expected) {
+  if (!ok) throw ConfigError(std::string("LocalizerConfig.") + field + ": expected " + expected);
+}
+
+bool finite_at_least(double v, double lo) { return std::isfinite(v) && v >= lo; }
+bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
+bool probability(double v) { return std::isfinite(v) && v >= 0.0 && v <= 1.0; }
+
+void validate_particles(const LocalizerConfig& c) {
+  require(c.min_particles >= 1, "min_particles", "at least 1");
+  require(c.max_particles >= c.min_particles, "max_particles", "at least min_particles");
+  require(finite_positive(c.pf_err) && c.pf_err < 1.0, "pf_err", "a value in (0, 1)");
+  if (c.kld_z_is_quantile) {
+    require(finite_positive(c.pf_z), "pf_z", "a positive normal quantile");
+  } else {
+    require(finite_positive(c.pf_z) && c.pf_z < 1.0, "pf_z", "a probability in (0, 1)");
+  }
+  require(finite_positive(c.kld_bin_xy), "kld_bin_xy", "a positive bin size in metres");
+  require(finite_positive(c.kld_bin_theta), "kld_bin_theta", "a positive bin size in radians");
+}
+
+void validate_resampling(const LocalizerConfig& c) {
+  require(c.resample_interval >= 1, "resample_interval", "at least 1");
+  require(finite_positive(c.resample_ess_fraction) && c.resample_ess_fraction <= 1.0,
+          "resample_ess_fraction", "a fraction in (0, 1]");
+  require(probability(c.recovery_alpha_slow), "recovery_alpha_slow", "a rate in [0, 1]");
+  require(probability(c.recovery_alpha_fast), "recovery_alpha_fast", "a rate in [0, 1]");
+  require(finite_at_least(c.update_min_d, 0.0), "update_min_d", "a distance >= 0");
+  require(finite_at_least(c.update_min_a, 0.0), "update_min_a", "an angle >= 0");
+}
+
+void validate_motion(const LocalizerConfig& c) {
+  require(finite_at_least(c.alpha1, 0.0), "alpha1", "a value >= 0");
+  require(finite_at_least(c.alpha2, 0.0), "alpha2", "a value >= 0");
+  require(finite_at_least(c.alpha3, 0.0), "alpha3", "a value >= 0");
+  require(finite_at_least(c.alpha4, 0.0), "alpha4", "a value >= 0");
+  require(finite_at_least(c.alpha5, 0.0), "alpha5", "a value >= 0");
+  require(finite_positive(c.wheelbase), "wheelbase", "a positive length in metres");
+}
+
+void validate_sensor(const LocalizerConfig& c) {
+  require(c.max_beams >= 1, "max_beams", "at least 1");
+  require(finite_at_least(c.z_hit, 0.0), "z_hit", "a weight >= 0");
+  require(finite_at_least(c.z_short, 0.0), "z_short", "a weight >= 0");
+  require(finite_at_least(c.z_max, 0.0), "z_max", "a weight >= 0");
+  require(finite_at_least(c.z_rand, 0.0), "z_rand", "a weight >= 0");
+  require(c.z_hit + c.z_short + c.z_max + c.z_rand > 0.0, "z_hit", "mixture weights not all 0");
+  require(finite_positive(c.sigma_hit), "sigma_hit", "a positive length in metres");
+  require(finite_positive(c.lambda_short), "lambda_short", "a positive rate in 1/m");
+  require(finite_positive(c.laser_likelihood_max_dist), "laser_likelihood_max_dist",
+          "a positive distance in metres");
+  require(finite_positive(c.likelihood_tempering), "likelihood_tempering", "an exponent > 0");
+  require(std::isfinite(c.laser_min_range), "laser_min_range", "a finite number");
+  require(std::isfinite(c.laser_max_range), "laser_max_range", "a finite number");
+}
+
+}  // namespace
+
+void LocalizerConfig::validate() const {
+  validate_particles(*this);
+  validate_resampling(*this);
+  validate_motion(*this);
+  validate_sensor(*this);
+  require(threads >= 0, "threads", "a thread count >= 0 (0 = every core)");
+  require(grain >= 1, "grain", "at least 1 particle per task");
+}
+
+}  // namespace mote

@@ -1,0 +1,120 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "mote/core/error.hpp"
+#include "mote/engine/localizer_config.hpp"
+#include "mote_test/data.hpp"
+
+namespace mote {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(LoadConfig, Nav2DefaultsFileGivesNav2Defaults) {
+  const LoadedConfig loaded = load_config(test::project_test_data() / "nav2_params.yaml");
+  const LocalizerConfig defaults;
+  const LocalizerConfig& c = loaded.config;
+  EXPECT_EQ(c.min_particles, 500);
+  EXPECT_EQ(c.max_particles, 2000);
+  EXPECT_DOUBLE_EQ(c.pf_err, 0.05);
+  EXPECT_DOUBLE_EQ(c.pf_z, 0.99);
+  EXPECT_DOUBLE_EQ(c.alpha1, 0.2);
+  EXPECT_DOUBLE_EQ(c.alpha5, 0.2);
+  EXPECT_DOUBLE_EQ(c.laser_likelihood_max_dist, 2.0);
+  EXPECT_DOUBLE_EQ(c.laser_max_range, 100.0);
+  EXPECT_DOUBLE_EQ(c.laser_min_range, -1.0);
+  EXPECT_EQ(c.max_beams, 60);
+  EXPECT_EQ(c.laser_model_type, LaserModel::kLikelihoodField);
+  EXPECT_EQ(c.odom_model_type, OdomModel::kDiff);
+  EXPECT_DOUBLE_EQ(c.update_min_d, 0.25);
+  EXPECT_DOUBLE_EQ(c.update_min_a, 0.2);
+  EXPECT_DOUBLE_EQ(c.z_hit, defaults.z_hit);
+  EXPECT_DOUBLE_EQ(c.sigma_hit, 0.2);
+  // Only the beam-skipping keys are worth a warning; frames, topics and use_sim_time are ROS's.
+  ASSERT_EQ(loaded.warnings.size(), 4U);
+  for (const std::string& w : loaded.warnings) EXPECT_THAT(w, HasSubstr("beam skip"));
+}
+
+TEST(LoadConfig, TunedNav2FileOverridesEveryValue) {
+  const LoadedConfig loaded = load_config(test::project_test_data() / "nav2_params_tuned.yaml");
+  const LocalizerConfig& c = loaded.config;
+  EXPECT_DOUBLE_EQ(c.alpha1, 0.05);
+  EXPECT_DOUBLE_EQ(c.alpha2, 0.06);
+  EXPECT_DOUBLE_EQ(c.alpha3, 0.07);
+  EXPECT_DOUBLE_EQ(c.alpha4, 0.08);
+  EXPECT_DOUBLE_EQ(c.alpha5, 0.09);
+  EXPECT_EQ(c.laser_model_type, LaserModel::kBeam);
+  EXPECT_EQ(c.odom_model_type, OdomModel::kOmni);
+  EXPECT_EQ(c.max_beams, 120);
+  EXPECT_EQ(c.max_particles, 8000);
+  EXPECT_EQ(c.min_particles, 200);
+  EXPECT_DOUBLE_EQ(c.pf_err, 0.02);
+  EXPECT_DOUBLE_EQ(c.pf_z, 0.95);
+  EXPECT_DOUBLE_EQ(c.recovery_alpha_fast, 0.1);
+  EXPECT_DOUBLE_EQ(c.recovery_alpha_slow, 0.001);
+  EXPECT_EQ(c.resample_interval, 2);
+  EXPECT_DOUBLE_EQ(c.sigma_hit, 0.1);
+  EXPECT_DOUBLE_EQ(c.laser_likelihood_max_dist, 4.0);
+  EXPECT_DOUBLE_EQ(c.z_hit, 0.9);
+  EXPECT_DOUBLE_EQ(c.z_short, 0.02);
+  EXPECT_DOUBLE_EQ(c.z_max, 0.03);
+  EXPECT_DOUBLE_EQ(c.z_rand, 0.05);
+  EXPECT_DOUBLE_EQ(c.lambda_short, 0.2);
+  EXPECT_DOUBLE_EQ(c.laser_min_range, 0.4);
+  EXPECT_DOUBLE_EQ(c.laser_max_range, 30.0);
+  ASSERT_EQ(loaded.warnings.size(), 2U);
+  EXPECT_THAT(loaded.warnings[0], HasSubstr("do_beamskip"));
+  EXPECT_THAT(loaded.warnings[1], HasSubstr("'my_custom_key': unknown key ignored"));
+  EXPECT_THAT(loaded.warnings[1], HasSubstr("nav2_params_tuned.yaml: line 31"));
+}
+
+TEST(ParseConfig, FlatMoteFileReadsMoteKeys) {
+  const LoadedConfig loaded = parse_config(
+      "threads: 2\nseed: 7\nlikelihood_combination: amcl\nodom_model_type: ackermann\n"
+      "wheelbase: 1.2\nlikelihood_tempering: 0.5\nselective_resampling: false\n",
+      "flat.yaml");
+  EXPECT_EQ(loaded.config.threads, 2);
+  EXPECT_EQ(loaded.config.seed, 7U);
+  EXPECT_EQ(loaded.config.likelihood_combination, LikelihoodCombination::kAmclCubedSum);
+  EXPECT_EQ(loaded.config.odom_model_type, OdomModel::kAckermann);
+  EXPECT_DOUBLE_EQ(loaded.config.wheelbase, 1.2);
+  EXPECT_DOUBLE_EQ(loaded.config.likelihood_tempering, 0.5);
+  EXPECT_DOUBLE_EQ(loaded.config.resample_ess_fraction, 1.0);
+  EXPECT_TRUE(loaded.warnings.empty());
+}
+
+void expect_input_error(const std::string& text, const std::string& fragment) {
+  try {
+    (void)parse_config(text, "bad.yaml");
+    ADD_FAILURE() << "no error for: " << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "bad.yaml");
+    EXPECT_THAT(e.what(), HasSubstr(fragment)) << text;
+  }
+}
+
+TEST(ParseConfig, WrongTypesNameTheKeyAndLine) {
+  expect_input_error("alpha1: 0.1\nalpha2: fast\n", "line 2, key 'alpha2': expected a number");
+  expect_input_error("max_particles: 2000.5\n", "key 'max_particles': expected an integer");
+  expect_input_error("laser_model_type: sonar\n", "expected likelihood_field");
+  expect_input_error("amcl_motion_conventions: maybe\n", "expected true or false");
+}
+
+TEST(ParseConfig, OutOfRangeValuesAreRejected) {
+  expect_input_error("min_particles: 100\nmax_particles: 50\n", "max_particles");
+  expect_input_error("pf_err: 0\n", "pf_err");
+  expect_input_error("pf_z: 1.5\n", "pf_z");
+  expect_input_error("sigma_hit: -0.1\n", "sigma_hit");
+  expect_input_error("z_hit: 0\nz_short: 0\nz_max: 0\nz_rand: 0\n", "not all 0");
+}
+
+TEST(ParseConfig, BrokenYamlAndMissingFile) {
+  expect_input_error("alpha1: [0.1\n", "invalid YAML");
+  expect_input_error("- just\n- a list\n", "expected a map");
+  EXPECT_THROW((void)load_config("/nonexistent/mote.yaml"), InputError);
+}
+
+TEST(LocalizerConfig, DefaultsAreValid) { EXPECT_NO_THROW(LocalizerConfig{}.validate()); }
+
+}  // namespace
+}  // namespace mote
