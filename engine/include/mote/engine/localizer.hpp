@@ -1,0 +1,117 @@
+#pragma once
+/// \file
+/// mote::Localizer: the complete MCL update (design.md section 2) behind one class. Construct it
+/// with a map and a LocalizerConfig, initialize it, then call update() with every odometry pose
+/// and scan; read estimate() and last_update() after each.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mote/core/pose.hpp"
+#include "mote/core/scan.hpp"
+#include "mote/engine/localizer_config.hpp"
+#include "mote/engine/particles.hpp"
+#include "mote/maps/occupancy_grid.hpp"
+
+namespace mote {
+
+/// A Gaussian summary of (part of) the particle set.
+struct PoseEstimate {
+  Pose2 mean;                  ///< weighted mean; theta is the circular mean
+  Eigen::Matrix3d covariance;  ///< of (x, y, theta), m^2, m rad, rad^2; theta residuals wrapped
+  double weight = 0.0;         ///< total normalized weight it summarizes
+  std::size_t particles = 0;   ///< particles it summarizes
+};
+
+/// What the filter believes: the whole set and its clusters (connected occupied KLD bins).
+struct LocalizationEstimate {
+  PoseEstimate overall;                ///< the whole particle set
+  std::vector<PoseEstimate> clusters;  ///< heaviest first
+  /// The heaviest cluster (amcl reports this one as the robot's pose).
+  [[nodiscard]] const PoseEstimate& best() const noexcept {
+    return clusters.empty() ? overall : clusters.front();
+  }
+};
+
+/// Why update() did or did not run the filter.
+enum class UpdateOutcome : std::uint8_t {
+  kUpdated,           ///< motion, sensor and (maybe) resampling ran
+  kInitialized,       ///< first scan after initialize(): weighed without motion
+  kNotMoved,          ///< below update_min_d / update_min_a: nothing changed
+  kRejectedOdometry,  ///< odometry pose not finite: nothing changed
+  kRejectedScan,      ///< no valid beam in the scan: nothing changed
+  kUnexplainedScan,   ///< no particle explained the scan: weights left uniform (see reason)
+};
+
+/// Wall-clock milliseconds of each phase of the last update.
+struct PhaseTimes {
+  double motion = 0.0;
+  double sensor = 0.0;
+  double normalize = 0.0;
+  double resample = 0.0;
+  double estimate = 0.0;
+  double total = 0.0;
+};
+
+/// Statistics of the last call to update().
+struct UpdateStats {
+  UpdateOutcome outcome = UpdateOutcome::kNotMoved;
+  std::string reason;                  ///< one line, for the outcomes that did not update normally
+  std::uint64_t step = 0;              ///< filter updates run so far
+  std::size_t particles = 0;           ///< particles after the update
+  std::size_t weighed = 0;             ///< particles the scan weighed (before resampling)
+  std::size_t beams = 0;               ///< beams used
+  double effective_sample_size = 0.0;  ///< of the weighed set
+  bool resampled = false;
+  std::size_t injected = 0;  ///< recovery particles drawn from free space
+  double log_w_slow = 0.0;   ///< augmented MCL averages (Thrun table 8.3), log domain
+  double log_w_fast = 0.0;
+  PhaseTimes ms;
+  [[nodiscard]] bool ran() const noexcept {
+    return outcome == UpdateOutcome::kUpdated || outcome == UpdateOutcome::kInitialized ||
+           outcome == UpdateOutcome::kUnexplainedScan;
+  }
+};
+
+/// Monte Carlo localization on a fixed occupancy grid.
+class Localizer {
+ public:
+  /// Validates the config (ConfigError) and builds the sensor model's tables (distance field or
+  /// Embree scene). The map is copied.
+  Localizer(const OccupancyGrid& map, LocalizerConfig config);
+  ~Localizer();
+  Localizer(Localizer&&) noexcept;
+  Localizer& operator=(Localizer&&) noexcept;
+  Localizer(const Localizer&) = delete;
+  Localizer& operator=(const Localizer&) = delete;
+
+  /// max_particles particles drawn from N(mean, covariance) (full 3x3, m and rad).
+  void initialize(const Pose2& mean, const Eigen::Matrix3d& covariance);
+  /// max_particles particles uniform over the map's free space (global localization).
+  /// Throws ConfigError when the map has no free cell.
+  void initialize_global();
+
+  /// One filter step from the odometry pose and the scan taken there. Returns true when the
+  /// filter ran (see last_update().outcome). Throws mote::Error when called before initialize.
+  bool update(const Pose2& odometry, const LaserScan& scan);
+
+  /// The current estimate (computed at the end of each update and after initialization).
+  [[nodiscard]] const LocalizationEstimate& estimate() const noexcept;
+  /// The particles and their normalized log-weights.
+  [[nodiscard]] ConstParticleView particles() const noexcept;
+  /// Statistics of the last update() call.
+  [[nodiscard]] const UpdateStats& last_update() const noexcept;
+  [[nodiscard]] const LocalizerConfig& config() const noexcept;
+  /// Threads the filter runs on.
+  [[nodiscard]] int threads() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mote
