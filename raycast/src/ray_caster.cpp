@@ -51,7 +51,7 @@ struct RayCaster::Impl {
       : frame(grid.origin()),
         options(opts),
         blocking(detail::blocking_mask(grid, opts.unknown_blocks)),
-        mask{grid.width(), grid.height(), grid.resolution(), blocking.data()} {
+        mask{grid.width(), grid.height(), static_cast<float>(grid.resolution()), blocking.data()} {
     const std::vector<detail::WallSegment> walls = detail::wall_segments(mask);
     wall_count = walls.size();
     scene = rtcNewScene(detail::embree_device());
@@ -82,7 +82,7 @@ struct RayCaster::Impl {
       const auto row = ranges.subspan(p * beams, beams);
       if (!s.finite) {
         std::fill(row.begin(), row.end(), std::numeric_limits<float>::quiet_NaN());
-      } else if (mask.blocks_point(s.ox, s.oy)) {
+      } else if (mask.blocks_point(static_cast<float>(s.ox), static_cast<float>(s.oy))) {
         std::fill(row.begin(), row.end(), 0.0F);
       } else {
         for (std::size_t b = 0; b < beams; ++b) query.add(rays.ray(s, b), p * beams + b);
@@ -119,7 +119,9 @@ float RayCaster::cast_one(Point2 origin, double angle, float max_range) const {
   if (!std::isfinite(ray.ox) || !std::isfinite(ray.oy) || !std::isfinite(ray.dx)) {
     return std::numeric_limits<float>::quiet_NaN();
   }
-  if (impl_->mask.blocks_point(ray.ox, ray.oy)) return 0.0F;
+  if (impl_->mask.blocks_point(static_cast<float>(ray.ox), static_cast<float>(ray.oy))) {
+    return 0.0F;
+  }
   const detail::FlushDenormals denormals_off;
   float range = max_range;
   detail::Single1 query(impl_->scene, max_range, std::span<float>(&range, 1));

@@ -1,5 +1,6 @@
 #include "ray_setup.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -18,12 +19,20 @@ std::vector<std::uint8_t> blocking_mask(const OccupancyGrid& grid, bool unknown_
   return mask;
 }
 
+int CellMask::cell_of(double v, int count) const noexcept {
+  // Written so that NaN compares false and lands off the map.
+  if (!(v >= line(0))) return -1;
+  if (!(v < line(count))) return count;
+  int k = static_cast<int>(std::floor(v / static_cast<double>(resolution)));
+  k = std::clamp(k, 0, count - 1);
+  // The division may round across a line; the float lattice decides.
+  while (k > 0 && v < line(k)) --k;
+  while (k + 1 < count && v >= line(k + 1)) ++k;
+  return k;
+}
+
 bool CellMask::blocks_point(double gx, double gy) const noexcept {
-  const double fi = std::floor(gx / resolution);
-  const double fj = std::floor(gy / resolution);
-  // Written so that NaN compares false and leaves the point off the map.
-  const bool inside = fi >= 0.0 && fj >= 0.0 && fi < width && fj < height;
-  return inside && blocks(static_cast<int>(fi), static_cast<int>(fj));
+  return blocks_or_free(cell_of(gx, width), cell_of(gy, height));
 }
 
 GridFrame::GridFrame(const Pose2& origin) noexcept

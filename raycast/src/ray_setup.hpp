@@ -19,28 +19,47 @@ namespace mote::detail {
 [[nodiscard]] std::vector<std::uint8_t> blocking_mask(const OccupancyGrid& grid,
                                                       bool unknown_blocks);
 
-/// Read-only view of a blocking mask with the grid's geometry.
+/// Read-only view of a blocking mask with the grid's geometry. Grid line k sits at line(k), the
+/// float product Embree's wall vertices use, and cell k is the half-open [line(k), line(k + 1)):
+/// both casters locate points with these, so they agree on which side of a wall a ray starts.
 struct CellMask {
   int width = 0;
   int height = 0;
-  double resolution = 1.0;  ///< m per cell
+  float resolution = 1.0F;  ///< m per cell
   const std::uint8_t* cells = nullptr;
 
   [[nodiscard]] bool blocks(int i, int j) const noexcept {
     return cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
                  static_cast<std::size_t>(i)] != 0;
   }
+  /// Blocking state with off-map cells free.
+  [[nodiscard]] bool blocks_or_free(int i, int j) const noexcept {
+    return i >= 0 && j >= 0 && i < width && j < height && blocks(i, j);
+  }
+  /// Coordinate (m) of grid line k.
+  [[nodiscard]] double line(int k) const noexcept {
+    return static_cast<double>(static_cast<float>(k) * resolution);
+  }
+  /// The cell k with line(k) <= v < line(k + 1), clamped to [-1, count].
+  [[nodiscard]] int cell_of(double v, int count) const noexcept;
   /// Whether a grid frame point (m) lies in a blocking cell; off-map points never do.
   [[nodiscard]] bool blocks_point(double gx, double gy) const noexcept;
 };
 
-/// A ray in the grid frame: origin (m) and unit direction.
+/// A ray in the grid frame: origin (m) and unit direction. Casters round it to float (what
+/// Embree traces) before use, so both trace exactly the same ray.
 struct GridRay {
   double ox = 0.0;
   double oy = 0.0;
   double dx = 1.0;
   double dy = 0.0;
 };
+
+/// The ray rounded through float, as Embree traces it.
+[[nodiscard]] inline GridRay to_float(const GridRay& r) noexcept {
+  return {static_cast<float>(r.ox), static_cast<float>(r.oy), static_cast<float>(r.dx),
+          static_cast<float>(r.dy)};
+}
 
 /// The sensor of one particle in the grid frame: position (m) and heading as cos/sin.
 struct SensorFrame {

@@ -4,12 +4,6 @@ namespace mote::detail {
 
 namespace {
 
-/// Blocking state with off-map cells free.
-bool blocks_or_free(const CellMask& mask, int i, int j) {
-  const bool inside = i >= 0 && j >= 0 && i < mask.width && j < mask.height;
-  return inside && mask.blocks(i, j);
-}
-
 /// Appends the maximal runs of boundary edges on one grid line. `is_edge(k)` says whether edge k
 /// (k in [0, count)) of the line separates blocking from non-blocking; `emit(begin, end)` adds
 /// the run of edges [begin, end).
@@ -31,13 +25,12 @@ void merge_runs(int count, const IsEdge& is_edge, const Emit& emit) {
 
 std::vector<WallSegment> wall_segments(const CellMask& mask) {
   std::vector<WallSegment> out;
-  const auto r = static_cast<float>(mask.resolution);
-  const auto coord = [r](int n) { return static_cast<float>(n) * r; };
+  const auto coord = [&mask](int n) { return static_cast<float>(mask.line(n)); };
   // Horizontal grid line j separates row j - 1 (below) from row j (above).
   for (int j = 0; j <= mask.height; ++j) {
     merge_runs(
         mask.width,
-        [&](int i) { return blocks_or_free(mask, i, j - 1) != blocks_or_free(mask, i, j); },
+        [&](int i) { return mask.blocks_or_free(i, j - 1) != mask.blocks_or_free(i, j); },
         [&](int begin, int end) {
           out.push_back({coord(begin), coord(j), coord(end), coord(j)});
         });
@@ -46,7 +39,7 @@ std::vector<WallSegment> wall_segments(const CellMask& mask) {
   for (int i = 0; i <= mask.width; ++i) {
     merge_runs(
         mask.height,
-        [&](int j) { return blocks_or_free(mask, i - 1, j) != blocks_or_free(mask, i, j); },
+        [&](int j) { return mask.blocks_or_free(i - 1, j) != mask.blocks_or_free(i, j); },
         [&](int begin, int end) {
           out.push_back({coord(i), coord(begin), coord(i), coord(end)});
         });
