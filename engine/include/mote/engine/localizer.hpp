@@ -13,19 +13,12 @@
 
 #include "mote/core/pose.hpp"
 #include "mote/core/scan.hpp"
+#include "mote/engine/estimate.hpp"
 #include "mote/engine/localizer_config.hpp"
 #include "mote/engine/particles.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 
 namespace mote {
-
-/// A Gaussian summary of (part of) the particle set.
-struct PoseEstimate {
-  Pose2 mean;                  ///< weighted mean; theta is the circular mean
-  Eigen::Matrix3d covariance;  ///< of (x, y, theta), m^2, m rad, rad^2; theta residuals wrapped
-  double weight = 0.0;         ///< total normalized weight it summarizes
-  std::size_t particles = 0;   ///< particles it summarizes
-};
 
 /// What the filter believes: the whole set and its clusters (connected occupied KLD bins).
 struct LocalizationEstimate {

@@ -1,0 +1,127 @@
+// KLD-sampling. Fox (2003) grows the sample while drawing it: after each draw from the weighted
+// set, update k and stop once n(k) samples exist. Here the count is computed first, from the
+// bins the current weighted set occupies, and then exactly n(k) particles are drawn by one
+// systematic pass. Statistically the two agree to first order: Fox's k is the number of bins
+// hit by draws from the weighted set, and the support of the weighted set (every bin holding a
+// particle) is what those draws converge to as n grows, so k here is an upper bound of the
+// sequential k for the same set (bins holding only negligible weight are counted too). The
+// bound errs on the side of more particles, i.e. on the safe side of the KL guarantee, and it
+// lets the draw be one parallel, deterministic systematic pass instead of a sequential loop.
+
+#include "mote/engine/kld.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+
+#include "mote/core/error.hpp"
+#include "mote/core/parallel.hpp"
+#include "mote/engine/fast_math.hpp"
+
+namespace mote {
+
+double standard_normal_quantile(double p) {
+  if (!(p > 0.0 && p < 1.0)) throw ConfigError("standard_normal_quantile: p must be in (0, 1)");
+  // Acklam's coefficients for the central and tail regions.
+  static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,
+                                 -2.759285104469687e+02, 1.383577518672690e+02,
+                                 -3.066479806614716e+01, 2.506628277459239e+00};
+  static constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02,
+                                 -1.556989798598866e+02, 6.680131188771972e+01,
+                                 -1.328068155288572e+01};
+  static constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
+                                 -2.400758277161838e+00, -2.549732539343734e+00,
+                                 4.374664141464968e+00,  2.938163982698783e+00};
+  static constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01,
+                                 2.445134137142996e+00, 3.754408661907416e+00};
+  constexpr double kLow = 0.02425;
+  double x = 0.0;
+  if (p < kLow || p > 1.0 - kLow) {
+    const double q = std::sqrt(-2.0 * std::log(p < kLow ? p : 1.0 - p));
+    x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+        ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+    if (p > 1.0 - kLow) x = -x;
+  } else {
+    const double q = p - 0.5;
+    const double r = q * q;
+    x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+        (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
+  }
+  // One Halley step against the exact CDF 0.5 erfc(-x / sqrt 2).
+  const double e = 0.5 * std::erfc(-x / std::numbers::sqrt2) - p;
+  const double u = e * std::sqrt(2.0 * std::numbers::pi) * std::exp(0.5 * x * x);
+  return x - u / (1.0 + 0.5 * x * u);
+}
+
+std::size_t kld_sample_count(std::size_t k, const KldConfig& config) {
+  if (k <= 1) return config.min_particles;
+  const double z = config.use_z ? config.z : standard_normal_quantile(1.0 - config.delta);
+  const double km1 = static_cast<double>(k - 1);
+  const double a = 2.0 / (9.0 * km1);
+  const double cube = std::pow(1.0 - a + std::sqrt(a) * z, 3.0);
+  const double n = std::ceil(km1 / (2.0 * config.epsilon) * cube);
+  const double bounded = std::clamp(n, static_cast<double>(config.min_particles),
+                                    static_cast<double>(config.max_particles));
+  return static_cast<std::size_t>(bounded);
+}
+
+KldBins::KldBins(const Bounds2& region, double bin_x, double bin_y, double bin_theta)
+    : region_(region),
+      inv_x_(static_cast<float>(1.0 / bin_x)),
+      inv_y_(static_cast<float>(1.0 / bin_y)),
+      inv_t_(static_cast<float>(1.0 / bin_theta)),
+      nx_(static_cast<std::size_t>(std::ceil((region.max_x - region.min_x) / bin_x)) + 1),
+      ny_(static_cast<std::size_t>(std::ceil((region.max_y - region.min_y) / bin_y)) + 1),
+      nt_(static_cast<std::size_t>(std::ceil(2.0 * std::numbers::pi / bin_theta))) {
+  if (!(bin_x > 0 && bin_y > 0 && bin_theta > 0) || !(region.max_x >= region.min_x) ||
+      !(region.max_y >= region.min_y)) {
+    throw ConfigError("KldBins: bin sizes must be positive and the region non-empty");
+  }
+  words_.resize((nx_ * ny_ * nt_ + 63) / 64);
+}
+
+std::uint64_t KldBins::bin_of(float x, float y, float theta) const noexcept {
+  constexpr float kPi = 3.14159265F;
+  const auto clamp_bin = [](float v, std::size_t n) {
+    const float hi = static_cast<float>(n - 1);
+    return static_cast<std::uint64_t>(std::clamp(std::floor(v), 0.0F, hi));
+  };
+  const std::uint64_t i = clamp_bin((x - static_cast<float>(region_.min_x)) * inv_x_, nx_);
+  const std::uint64_t j = clamp_bin((y - static_cast<float>(region_.min_y)) * inv_y_, ny_);
+  // Theta in (-pi, pi] shifted to [0, 2 pi): bins wrap, the last one may be narrower.
+  const std::uint64_t t = clamp_bin((fast_wrap_angle(theta) + kPi) * inv_t_, nt_);
+  return (t * ny_ + j) * nx_ + i;
+}
+
+std::size_t KldBins::count(const ConstParticleView& p, std::size_t grain) {
+  std::fill(words_.begin(), words_.end(), 0);
+  std::uint64_t* words = words_.data();
+  par::for_each_chunk(p.size(), grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint64_t bin = bin_of(p.x[i], p.y[i], p.theta[i]);
+      std::atomic_ref<std::uint64_t> word(words[bin >> 6]);
+      const std::uint64_t bit = std::uint64_t{1} << (bin & 63);
+      if ((word.load(std::memory_order_relaxed) & bit) == 0) {
+        word.fetch_or(bit, std::memory_order_relaxed);
+      }
+    }
+  });
+  return par::reduce(
+      words_.size(), grain, std::size_t{0},
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        std::size_t k = 0;
+        for (std::size_t w = begin; w < end; ++w)
+          k += static_cast<std::size_t>(std::popcount(words[w]));
+        return k;
+      },
+      /*join=*/[](std::size_t a, std::size_t b) { return a + b; });
+}
+
+std::size_t kld_sample_count(const ConstParticleView& particles, KldBins& bins,
+                             const KldConfig& config, std::size_t grain) {
+  return kld_sample_count(bins.count(particles, grain), config);
+}
+
+}  // namespace mote

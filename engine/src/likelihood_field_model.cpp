@@ -1,0 +1,101 @@
+#include "mote/engine/likelihood_field_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "mote/core/error.hpp"
+#include "mote/engine/fast_math.hpp"
+
+namespace mote {
+
+namespace {
+
+// Particles handled together: their accumulators and sin/cos stay in L1 while every beam
+// streams over them (the loop over particles is the vectorized one).
+constexpr std::size_t kBlock = 256;
+
+DistanceFieldOptions field_options(const LikelihoodFieldParams& p) {
+  if (!(p.max_distance > 0.0)) {
+    throw ConfigError("likelihood field: max_distance must be positive");
+  }
+  return {.unknown_is_obstacle = false, .max_distance = static_cast<float>(p.max_distance)};
+}
+
+}  // namespace
+
+LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid,
+                                           const LikelihoodFieldParams& params)
+    : params_(params), field_(grid, field_options(params)) {}
+
+void LikelihoodFieldModel::prepare(const BeamSet& beams) {
+  if (table_ && beams.range_max == table_range_max_) return;
+  const double range_max = beams.range_max;
+  const MixtureParams& m = params_.mixture;
+  const double max_d = params_.max_distance;
+  auto value = [&](float d) -> float {
+    const double dist = std::min<double>(d, max_d);  // amcl clamps at max_occ_dist
+    if (params_.combination == LikelihoodCombination::kAmclCubedSum) {
+      const double pz = amcl_likelihood_field_pz(dist, range_max, m);
+      return static_cast<float>(pz * pz * pz);
+    }
+    return static_cast<float>(std::log(likelihood_field_density(dist, range_max, m)));
+  };
+  table_ = std::make_unique<LikelihoodTable>(field_, value, value(static_cast<float>(max_d)));
+  table_range_max_ = beams.range_max;
+}
+
+void LikelihoodFieldModel::weigh(const BeamSet& beams, const ParticleView& particles,
+                                 std::size_t begin, std::size_t end) const {
+  if (!table_ || beams.range_max != table_range_max_) {
+    throw Error("LikelihoodFieldModel::weigh: call prepare() with this scan first");
+  }
+  // Beam endpoints in the robot frame: sensor pose composed with (r cos a, r sin a).
+  const std::size_t n = beams.size();
+  std::vector<float> ex(n);
+  std::vector<float> ey(n);
+  const Pose2& s = beams.sensor_pose;
+  for (std::size_t b = 0; b < n; ++b) {
+    const double a = s.theta + beams.angle[b];
+    ex[b] = static_cast<float>(s.x + beams.range[b] * std::cos(a));
+    ey[b] = static_cast<float>(s.y + beams.range[b] * std::sin(a));
+  }
+  for (std::size_t block = begin; block < end; block += kBlock) {
+    weigh_block(ex.data(), ey.data(), n, particles, block, std::min(end, block + kBlock));
+  }
+}
+
+void LikelihoodFieldModel::weigh_block(const float* endpoint_x, const float* endpoint_y,
+                                       std::size_t beams, const ParticleView& particles,
+                                       std::size_t begin, std::size_t end) const {
+  const std::size_t count = end - begin;
+  alignas(64) float cos_t[kBlock];
+  alignas(64) float sin_t[kBlock];
+  alignas(64) float sum[kBlock];
+  const float* px = particles.x + begin;
+  const float* py = particles.y + begin;
+  for (std::size_t k = 0; k < count; ++k) {
+    const SinCos sc = fast_sin_cos(particles.theta[begin + k]);
+    cos_t[k] = sc.cos;
+    sin_t[k] = sc.sin;
+    sum[k] = 0.0F;
+  }
+  const LikelihoodTable& table = *table_;
+  for (std::size_t b = 0; b < beams; ++b) {
+    const float bx = endpoint_x[b];
+    const float by = endpoint_y[b];
+    for (std::size_t k = 0; k < count; ++k) {
+      const float wx = px[k] + cos_t[k] * bx - sin_t[k] * by;
+      const float wy = py[k] + sin_t[k] * bx + cos_t[k] * by;
+      sum[k] += table.lookup(wx, wy);
+    }
+  }
+  const auto tau = static_cast<float>(params_.tempering);
+  const bool cubed = params_.combination == LikelihoodCombination::kAmclCubedSum;
+  for (std::size_t k = 0; k < count; ++k) {
+    const float log_likelihood = cubed ? std::log1p(sum[k]) : sum[k];
+    particles.logw[begin + k] += tau * log_likelihood;
+  }
+}
+
+}  // namespace mote

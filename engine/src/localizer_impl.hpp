@@ -1,0 +1,61 @@
+#pragma once
+// The Localizer's state and the steps of one update (private to mote::engine).
+
+#include <cstdint>
+#include <string>
+#include <variant>
+
+#include "mote/engine/beam_model.hpp"
+#include "mote/engine/beams.hpp"
+#include "mote/engine/executor.hpp"
+#include "mote/engine/kld.hpp"
+#include "mote/engine/likelihood_field_model.hpp"
+#include "mote/engine/localizer.hpp"
+#include "mote/engine/motion.hpp"
+#include "mote/engine/particles.hpp"
+#include "mote/engine/recovery.hpp"
+
+namespace mote {
+
+using SensorVariant = std::variant<LikelihoodFieldModel, BeamModel>;
+using MotionVariant = std::variant<OdometryModel, OmniModel, AckermannModel>;
+
+struct Localizer::Impl {
+  Impl(const OccupancyGrid& grid, LocalizerConfig cfg);
+
+  // Steps of update(), in order (localizer_steps.cpp).
+  bool reject(UpdateOutcome outcome, std::string reason);
+  bool select(const LaserScan& scan);
+  [[nodiscard]] bool moved_enough(const Pose2& odometry) const;
+  void predict(const Pose2& odometry);
+  void weigh();
+  void normalize();
+  void maybe_resample();
+  void update_estimate();
+
+  // Initialization (localizer.cpp): forget everything but the map and the config.
+  void start_fresh();
+
+  LocalizerConfig config;
+  OccupancyGrid map;
+  Executor executor;
+  MotionVariant motion;
+  SensorVariant sensor;
+  BeamSelection selection;
+  KldConfig kld;
+  KldBins bins;
+  AugmentedMcl recovery;
+  ParticleStore store;
+  BeamSet beams;
+  LocalizationEstimate estimate;
+  UpdateStats stats;
+
+  std::uint64_t step = 0;  // filter updates run; keys the random streams
+  bool initialized = false;
+  bool has_odometry = false;
+  bool degenerate = false;  // the last scan explained no particle
+  Pose2 last_odometry;
+  int updates_since_resample = 0;
+};
+
+}  // namespace mote

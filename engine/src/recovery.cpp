@@ -1,0 +1,121 @@
+#include "mote/engine/recovery.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "mote/core/error.hpp"
+#include "mote/core/parallel.hpp"
+#include "mote/engine/philox.hpp"
+
+namespace mote {
+namespace {
+
+// log(exp(a) + exp(b)) without overflow or underflow; -inf when both are -inf.
+double log_add_exp(double a, double b) {
+  const double hi = std::max(a, b);
+  if (hi == -std::numeric_limits<double>::infinity()) return hi;
+  return hi + std::log1p(std::exp(std::min(a, b) - hi));
+}
+
+// One exponential-smoothing step of a log-average: log((1 - alpha) exp(avg) + alpha exp(x)).
+double smooth(double log_avg, double log_x, double alpha) {
+  if (alpha <= 0.0) return log_avg;
+  if (alpha >= 1.0) return log_x;
+  return log_add_exp(std::log1p(-alpha) + log_avg, std::log(alpha) + log_x);
+}
+
+// A pose uniform over free space for particle i: the cell index uses 32 random bits scaled to
+// the cell count (bias below count / 2^32), the point and heading use the remaining words.
+Pose2 free_pose(const FreeSpace& space, const RngStream& rng, std::uint32_t i) {
+  const PhiloxCounter b = rng.block(i);
+  const std::size_t cells = space.free_cell_count();
+  const auto k = static_cast<std::size_t>((static_cast<std::uint64_t>(b[0]) * cells) >> 32);
+  const Point2 p = space.free_point(k, bits_to_unit(b[1]), bits_to_unit(b[2]));
+  return {p.x, p.y, (2.0 * bits_to_unit(b[3]) - 1.0) * std::numbers::pi};
+}
+
+}  // namespace
+
+void AugmentedMcl::update(double log_mean_likelihood) noexcept {
+  if (!started_) {
+    log_slow_ = log_fast_ = log_mean_likelihood;
+    started_ = std::isfinite(log_mean_likelihood);
+    return;
+  }
+  log_slow_ = smooth(log_slow_, log_mean_likelihood, config_.alpha_slow);
+  log_fast_ = smooth(log_fast_, log_mean_likelihood, config_.alpha_fast);
+}
+
+double AugmentedMcl::injection_probability() const noexcept {
+  if (!started_ || config_.alpha_slow <= 0.0 || config_.alpha_fast <= 0.0) return 0.0;
+  if (log_slow_ == -std::numeric_limits<double>::infinity()) return 1.0;
+  return std::max(0.0, 1.0 - std::exp(log_fast_ - log_slow_));
+}
+
+std::size_t inject_random_particles(const ParticleView& p, double probability,
+                                    const FreeSpace& space, std::uint64_t seed, std::uint64_t step,
+                                    std::size_t grain) {
+  if (probability <= 0.0 || space.free_cell_count() == 0) return 0;
+  const RngStream decide{seed, step, RngPurpose::kInjection};
+  const RngStream where{seed, step, RngPurpose::kFreePose};
+  return par::reduce(
+      p.size(), grain, std::size_t{0},
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        std::size_t replaced = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+          const auto idx = static_cast<std::uint32_t>(i);
+          if (decide.uniform_double(idx) >= probability) continue;
+          p.set_pose(i, free_pose(space, where, idx));
+          ++replaced;
+        }
+        return replaced;
+      },
+      /*join=*/[](std::size_t a, std::size_t b) { return a + b; });
+}
+
+void initialize_gaussian(ParticleStore& store, std::size_t n, const Pose2& mean,
+                         const Eigen::Matrix3d& covariance, std::uint64_t seed, std::size_t grain) {
+  // LDLT with pivoting accepts semi-definite matrices (zero variances); L sqrt(D) is then a
+  // square root of P^T covariance P, and the permutation is undone on the sample.
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(covariance);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
+      !covariance.isApprox(covariance.transpose()) || !covariance.allFinite()) {
+    throw ConfigError("initialize_gaussian: covariance must be symmetric positive semi-definite");
+  }
+  const Eigen::Matrix3d root = ldlt.transpositionsP().transpose() *
+                               Eigen::Matrix3d(ldlt.matrixL()) *
+                               ldlt.vectorD().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  store.resize(n);
+  const ParticleView p = store.view();
+  const RngStream rng{seed, 0, RngPurpose::kInitial};
+  par::for_each_chunk(n, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::array<float, 4> z = rng.normal4(static_cast<std::uint32_t>(i));
+      const Eigen::Vector3d d = root * Eigen::Vector3d(z[0], z[1], z[2]);
+      p.set_pose(i, {mean.x + d.x(), mean.y + d.y(), mean.theta + d.z()});
+    }
+  });
+  store.set_uniform_weights();
+}
+
+void initialize_uniform(ParticleStore& store, std::size_t n, const FreeSpace& space,
+                        std::uint64_t seed, std::size_t grain) {
+  if (space.free_cell_count() == 0) {
+    throw ConfigError("initialize_uniform: the map has no free cell to place particles in");
+  }
+  store.resize(n);
+  const ParticleView p = store.view();
+  const RngStream rng{seed, 0, RngPurpose::kFreePose};
+  par::for_each_chunk(n, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      p.set_pose(i, free_pose(space, rng, static_cast<std::uint32_t>(i)));
+    }
+  });
+  store.set_uniform_weights();
+}
+
+}  // namespace mote

@@ -1,0 +1,184 @@
+#include "mote/engine/resample.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mote/core/parallel.hpp"
+#include "mote/engine/fast_math.hpp"
+#include "mote/engine/philox.hpp"
+
+namespace mote {
+namespace {
+
+constexpr std::uint64_t kOne = std::uint64_t{1} << 32;  // one copy in 32.32 fixed point
+
+// The shared front end of every scheme: q (scratch 0) and its exclusive prefix sum C (scratch
+// 1, with C[N] = total). Weights must be normalized; q_i <= n_out * 2^32 < 2^64.
+struct FixedWeights {
+  const std::uint64_t* q;
+  const std::uint64_t* c;
+  std::uint64_t total;
+};
+
+FixedWeights fixed_point_weights(ParticleStore& store, std::size_t n_out, std::size_t grain) {
+  const ConstParticleView in = store.view();
+  std::uint64_t* q = store.scratch(0);
+  std::uint64_t* c = store.scratch(1);
+  const double scale = static_cast<double>(n_out) * static_cast<double>(kOne);
+  par::for_each_chunk(in.size(), grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      q[i] = static_cast<std::uint64_t>(static_cast<double>(fast_exp(in.logw[i])) * scale);
+    }
+  });
+  const std::uint64_t total =
+      par::exclusive_scan<std::uint64_t>(in.size(), grain, c, [&](std::size_t i) { return q[i]; });
+  c[in.size()] = total;
+  return {q, c, total};
+}
+
+// The scheme's own fixed-point total may differ from n_out * 2^32 by a few units; a position
+// at or past the total belongs to the last particle with positive weight.
+std::size_t ancestor_of(const FixedWeights& fw, std::size_t n, std::uint64_t pos) {
+  pos = std::min(pos, fw.total - 1);
+  return static_cast<std::size_t>(std::upper_bound(fw.c, fw.c + n, pos) - fw.c) - 1;
+}
+
+void copy_particle(const ConstParticleView& in, std::size_t i, const ParticleView& out,
+                   std::size_t j) {
+  out.x[j] = in.x[i];
+  out.y[j] = in.y[i];
+  out.theta[j] = in.theta[i];
+}
+
+// Writes uniform weights into the gathered buffer and makes it current.
+void finish(ParticleStore& store, std::size_t n_out) {
+  store.swap_buffers(n_out);
+  store.set_uniform_weights();
+}
+
+std::uint64_t comb_offset(std::uint64_t seed, std::uint64_t step) {
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  return rng.block(0)[0];  // U in [0, 2^32): the one uniform of systematic resampling
+}
+
+// Index of the first comb tooth j * 2^32 + u at or after position c (ceil((c - u) / 2^32)).
+std::uint64_t first_tooth(std::uint64_t c, std::uint64_t u) {
+  return c <= u ? 0 : (c - u + kOne - 1) >> 32;
+}
+
+// Fallback when every q_i rounded to 0 (not normalized, or n_out == 0): spread evenly.
+bool resample_empty_total(ParticleStore& store, std::size_t n_out, const FixedWeights& fw) {
+  if (fw.total != 0 && n_out != 0) return false;
+  const ConstParticleView in = store.view();
+  const ParticleView out = store.spare(n_out);
+  for (std::size_t j = 0; j < n_out && in.size() > 0; ++j) {
+    copy_particle(in, j * in.size() / n_out, out, j);
+  }
+  finish(store, n_out);
+  return true;
+}
+
+}  // namespace
+
+void resample_systematic(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
+                         std::uint64_t step, std::size_t grain) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, grain);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const std::uint64_t u = comb_offset(seed, step);
+  const ConstParticleView in = store.view();
+  const ParticleView out = store.spare(n_out);
+  const std::size_t n = in.size();
+  par::for_each_chunk(n, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (fw.q[i] == 0) continue;
+      const bool last = fw.c[i] + fw.q[i] == fw.total;  // owns the teeth past the total
+      const std::uint64_t jb = std::min<std::uint64_t>(first_tooth(fw.c[i], u), n_out);
+      const std::uint64_t je =
+          last ? n_out : std::min<std::uint64_t>(first_tooth(fw.c[i] + fw.q[i], u), n_out);
+      for (std::uint64_t j = jb; j < je; ++j) copy_particle(in, i, out, j);
+    }
+  });
+  finish(store, n_out);
+}
+
+void resample_systematic_serial(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
+                                std::uint64_t step) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, store.size() + 1);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const std::uint64_t u = comb_offset(seed, step);
+  const ConstParticleView in = store.view();
+  const ParticleView out = store.spare(n_out);
+  std::size_t i = 0;
+  for (std::size_t j = 0; j < n_out; ++j) {
+    const std::uint64_t pos = std::min(j * kOne + u, fw.total - 1);
+    while (fw.c[i + 1] <= pos) ++i;  // Thrun table 4.4, lines 7-9 (c[N] = total > pos)
+    copy_particle(in, i, out, j);
+  }
+  finish(store, n_out);
+}
+
+void resample_multinomial(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
+                          std::uint64_t step, std::size_t grain) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, grain);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  const ConstParticleView in = store.view();
+  const ParticleView out = store.spare(n_out);
+  const auto total = static_cast<double>(fw.total);
+  par::for_each_chunk(n_out, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j) {
+      const double uj = rng.uniform_double(static_cast<std::uint32_t>(j), 1);
+      copy_particle(in, ancestor_of(fw, in.size(), static_cast<std::uint64_t>(uj * total)), out, j);
+    }
+  });
+  finish(store, n_out);
+}
+
+void resample_stratified(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
+                         std::uint64_t step, std::size_t grain) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, grain);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  const ConstParticleView in = store.view();
+  const ParticleView out = store.spare(n_out);
+  par::for_each_chunk(n_out, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j) {
+      const std::uint64_t pos = j * kOne + rng.block(static_cast<std::uint32_t>(j), 2)[0];
+      copy_particle(in, ancestor_of(fw, in.size(), pos), out, j);
+    }
+  });
+  finish(store, n_out);
+}
+
+void resample_residual(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
+                       std::uint64_t step) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, store.size() + 1);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const ConstParticleView in = store.view();
+  const ParticleView out = store.spare(n_out);
+  std::size_t j = 0;
+  std::uint64_t residual_total = 0;
+  std::uint64_t* residual = store.scratch(1);  // C is no longer needed: reuse as residual sums
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    for (std::uint64_t k = 0; k < (fw.q[i] >> 32) && j < n_out; ++k) copy_particle(in, i, out, j++);
+    residual[i] = residual_total;
+    residual_total += fw.q[i] & (kOne - 1);
+  }
+  residual[in.size()] = residual_total;
+  const FixedWeights rest{fw.q, residual, residual_total};
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  for (; j < n_out; ++j) {
+    const double uj = rng.uniform_double(static_cast<std::uint32_t>(j), 3);
+    const auto pos = static_cast<std::uint64_t>(uj * static_cast<double>(residual_total));
+    copy_particle(in, residual_total == 0 ? in.size() - 1 : ancestor_of(rest, in.size(), pos), out,
+                  j);
+  }
+  finish(store, n_out);
+}
+
+}  // namespace mote

@@ -1,0 +1,103 @@
+#include "mote/engine/weights.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "mote/core/parallel.hpp"
+#include "mote/engine/fast_math.hpp"
+
+namespace mote {
+namespace {
+
+constexpr float kNegInf = -std::numeric_limits<float>::infinity();
+
+// Sum of f(i) over [begin, end) in 16 fixed double lanes (lane = i mod 16, then lanes added in
+// order): the grouping depends only on the indices, so vector and scalar code agree, and the
+// lane loop vectorizes where a single accumulator could not.
+template <class F>
+double lane_sum(std::size_t begin, std::size_t end, const F& f) {
+  std::array<double, par::kVectorWidth> acc{};
+  std::size_t i = begin;
+  for (; i + par::kVectorWidth <= end; i += par::kVectorWidth) {
+    for (std::size_t k = 0; k < par::kVectorWidth; ++k) acc[k] += static_cast<double>(f(i + k));
+  }
+  for (std::size_t k = 0; i < end; ++i, ++k) acc[k] += static_cast<double>(f(i));
+  double total = 0.0;
+  for (const double a : acc) total += a;
+  return total;
+}
+
+float max_log_weight(const ConstParticleView& p, std::size_t grain) {
+  return par::reduce(
+      p.size(), grain, kNegInf,
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        std::array<float, par::kVectorWidth> lanes;  // per-lane maxima: vectorizes
+        lanes.fill(kNegInf);
+        for (std::size_t i = begin; i < end; ++i) {
+          float& m = lanes[i % par::kVectorWidth];
+          m = std::max(m, p.logw[i]);  // std::max(m, NaN) keeps m: NaN ignored
+        }
+        return *std::max_element(lanes.begin(), lanes.end());
+      },
+      /*join=*/[](float a, float b) { return std::max(a, b); });
+}
+
+double sum_exp(const ConstParticleView& p, float shift, std::size_t grain, int power) {
+  const auto fpower = static_cast<float>(power);
+  return par::reduce(
+      p.size(), grain, 0.0,
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        return lane_sum(begin, end, [&](std::size_t i) {
+          const float v = p.logw[i];
+          return fast_exp(fpower * ((v == v ? v : kNegInf) - shift));  // NaN -> weight 0
+        });
+      },
+      /*join=*/[](double a, double b) { return a + b; });
+}
+
+void fill_uniform(const ParticleView& p, std::size_t grain) {
+  const float logw = -std::log(static_cast<float>(p.size()));
+  par::for_each_chunk(p.size(), grain, [&](std::size_t begin, std::size_t end) {
+    std::fill(p.logw + begin, p.logw + end, logw);
+  });
+}
+
+}  // namespace
+
+NormalizeResult normalize(const ParticleView& p, std::size_t grain) {
+  NormalizeResult r;
+  if (p.size() == 0) return r;
+  const double log_n = std::log(static_cast<double>(p.size()));
+  const float max_logw = max_log_weight(p, grain);
+  if (!std::isfinite(max_logw)) {  // all -inf / NaN, or a +inf weight: no usable information
+    fill_uniform(p, grain);
+    constexpr double kNegInfD = -std::numeric_limits<double>::infinity();
+    return {WeightStatus::kDegenerate, kNegInfD, kNegInfD, static_cast<double>(p.size())};
+  }
+  const double total = sum_exp(p, max_logw, grain, 1);  // >= 1: the max contributes exp(0)
+  const double log_total = static_cast<double>(max_logw) + std::log(total);
+  const auto shift = static_cast<float>(log_total);
+  par::for_each_chunk(p.size(), grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const float v = p.logw[i];
+      p.logw[i] = v == v ? v - shift : kNegInf;
+    }
+  });
+  r.status = WeightStatus::kOk;
+  r.log_total = log_total;
+  r.log_mean_likelihood = log_total - log_n;
+  r.effective_sample_size = effective_sample_size(p, grain);
+  return r;
+}
+
+double effective_sample_size(const ConstParticleView& p, std::size_t grain) {
+  if (p.size() == 0) return 0.0;
+  const double sum_sq = sum_exp(p, 0.0F, grain, 2);  // sum of w_i^2 = exp(2 logw_i)
+  return sum_sq > 0.0 ? 1.0 / sum_sq : static_cast<double>(p.size());
+}
+
+}  // namespace mote
