@@ -1,0 +1,81 @@
+// OccupancyGrid as FreeSpace: the free-cell index, points drawn in free cells, bounds.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "mote/core/error.hpp"
+#include "mote/maps/occupancy_grid.hpp"
+
+namespace mote {
+namespace {
+
+OccupancyGrid random_grid(std::uint32_t seed, Pose2 origin) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> state(0, 2);
+  std::vector<CellState> cells(23 * 17);
+  for (CellState& c : cells) c = static_cast<CellState>(state(rng));
+  return {23, 17, 0.25, origin, std::move(cells)};
+}
+
+TEST(FreeSpace, IndexListsExactlyTheFreeCellsInOrder) {
+  const OccupancyGrid grid = random_grid(5, Pose2{});
+  std::vector<std::uint32_t> expected;
+  for (std::uint32_t k = 0; k < grid.cell_count(); ++k) {
+    if (grid.cells()[k] == CellState::kFree) expected.push_back(k);
+  }
+  EXPECT_EQ(grid.free_cells(), expected);
+  EXPECT_EQ(grid.free_cell_count(), expected.size());
+}
+
+TEST(FreeSpace, DrawnPointsFallInTheirFreeCell) {
+  for (const double yaw : {0.0, 0.9, 3.14, -1.6}) {
+    const OccupancyGrid grid = random_grid(9, Pose2{2.0, -1.0, yaw});
+    const FreeSpace& space = grid;
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<double> u(0.01, 0.99);
+    for (std::size_t k = 0; k < space.free_cell_count(); ++k) {
+      const Point2 p = space.free_point(k, u(rng), u(rng));
+      const CellIndex c = grid.world_to_cell(p);
+      ASSERT_TRUE(grid.contains(c));
+      EXPECT_EQ(grid.linear_index(c), grid.free_cells()[k]);
+      EXPECT_EQ(grid.at(c), CellState::kFree);
+    }
+  }
+}
+
+TEST(FreeSpace, CornersOfTheFreePointSpanTheCell) {
+  std::vector<CellState> cells(4, CellState::kOccupied);
+  cells[3] = CellState::kFree;  // cell (1, 1)
+  const OccupancyGrid grid(2, 2, 0.5, Pose2{10.0, 20.0, 0.0}, cells);
+  ASSERT_EQ(grid.free_cell_count(), 1U);
+  EXPECT_DOUBLE_EQ(grid.free_point(0, 0.0, 0.0).x, 10.5);
+  EXPECT_DOUBLE_EQ(grid.free_point(0, 0.0, 0.0).y, 20.5);
+  EXPECT_DOUBLE_EQ(grid.free_point(0, 1.0, 1.0).x, 11.0);
+  EXPECT_DOUBLE_EQ(grid.free_point(0, 1.0, 1.0).y, 21.0);
+}
+
+TEST(FreeSpace, BoundsHoldEveryCellCentre) {
+  const OccupancyGrid grid = random_grid(3, Pose2{-4.0, 6.0, 0.6});
+  const Bounds2 b = grid.bounds();
+  for (int j = 0; j < grid.height(); ++j) {
+    for (int i = 0; i < grid.width(); ++i) {
+      const Point2 p = grid.cell_center({i, j});
+      EXPECT_TRUE(p.x > b.min_x && p.x < b.max_x && p.y > b.min_y && p.y < b.max_y);
+    }
+  }
+}
+
+TEST(FreeSpace, NoFreeCellsMeansNowhereToBe) {
+  const OccupancyGrid grid(2, 1, 0.1, Pose2{}, {CellState::kOccupied, CellState::kUnknown});
+  EXPECT_EQ(grid.free_cell_count(), 0U);
+}
+
+TEST(OccupancyGrid, RejectsBadShapes) {
+  EXPECT_THROW(OccupancyGrid(0, 1, 0.1, Pose2{}, {}), ConfigError);
+  EXPECT_THROW(OccupancyGrid(1, 1, 0.0, Pose2{}, {CellState::kFree}), ConfigError);
+  EXPECT_THROW(OccupancyGrid(2, 1, 0.1, Pose2{}, {CellState::kFree}), ConfigError);
+}
+
+}  // namespace
+}  // namespace mote
