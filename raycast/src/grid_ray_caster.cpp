@@ -14,8 +14,8 @@ namespace {
 
 /// The shared start rule, then the walk: a sensor inside a blocking cell reads 0.
 float cast_ray(const detail::CellMask& mask, const detail::GridRay& grid_ray, float max_range) {
-  const detail::GridRay ray = detail::to_float(grid_ray);
-  if (mask.blocks_point(ray.ox, ray.oy)) return 0.0F;
+  const detail::GridRay ray = mask.prepare(grid_ray);
+  if (mask.blocks_start(ray.ox, ray.oy)) return 0.0F;
   return detail::walk_grid(mask, ray, max_range);
 }
 
@@ -31,8 +31,8 @@ GridRayCaster::GridRayCaster(const OccupancyGrid& grid, RayCastOptions options)
 
 void GridRayCaster::cast(const RayBatch& batch, std::span<float> ranges) const {
   const detail::GridFrame frame(origin_);
-  const detail::BatchRays rays(frame, batch, ranges.size());
   const detail::CellMask mask{width_, height_, static_cast<float>(resolution_), blocking_.data()};
+  const detail::BatchRays rays(frame, mask, batch, ranges.size());
   const std::size_t beams = rays.beams();
   par::for_each_chunk(
       rays.particles(), options_.particle_grain, [&](std::size_t begin, std::size_t end) {

@@ -10,79 +10,50 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Clips the ray parameter interval [t0, t1] (m) to the slab [0, size] along one axis; false
+/// Clips the ray parameter interval [t0, t1] (m) to the slab [lo, hi] along one axis; false
 /// when the ray never meets it.
-bool clip_axis(double o, double d, double size, double& t0, double& t1) {
-  if (d == 0.0) return o >= 0.0 && o <= size;
-  double enter = (0.0 - o) / d;
-  double leave = (size - o) / d;
+bool clip_axis(double o, double d, double lo, double hi, double& t0, double& t1) {
+  if (d == 0.0) return o >= lo && o <= hi;
+  double enter = (lo - o) / d;
+  double leave = (hi - o) / d;
   if (enter > leave) std::swap(enter, leave);
   t0 = std::max(t0, enter);
   t1 = std::min(t1, leave);
   return t0 <= t1;
 }
 
-/// One axis of the Amanatides-Woo walk: current cell, step and the ray parameter (m) at which
-/// the ray crosses the next grid line, taken from the float lattice so it meets the same
-/// lines as Embree's walls.
-struct Axis {
-  int cell = 0;
+/// The grid lines one axis of the ray crosses, in order: the index of the next line and the ray
+/// parameter (m) where it is crossed (Amanatides-Woo's tMax), taken from the float lattice so
+/// the walk meets exactly the lines Embree's walls stand on.
+struct LineCursor {
+  int line = 0;
   int step = 0;
-  double t_next = kInf;
+  double t = kInf;
 
-  void advance(const CellMask& m, double o, double d) {
-    cell += step;
-    t_next = (m.line(cell + (step > 0 ? 1 : 0)) - o) / d;
+  LineCursor(const CellMask& m, double o, double d, double t0, int count) {
+    if (d == 0.0) return;
+    const double p = o + t0 * d;
+    const int cell = m.cell_of(p, count);
+    step = d > 0.0 ? 1 : -1;
+    line = d > 0.0 && m.line(cell) != p ? cell + 1 : cell;
+    t = (m.line(line) - o) / d;
+  }
+  void advance(const CellMask& m, double o, double d, int count) {
+    line += step;
+    t = line < 0 || line > count ? kInf : (m.line(line) - o) / d;
   }
 };
 
-Axis start_axis(const CellMask& m, double o, double d, double t0, int count) {
-  Axis a;
-  a.cell = std::clamp(m.cell_of(o + t0 * d, count), 0, count - 1);
-  if (d == 0.0) return a;
-  a.step = d > 0.0 ? 1 : -1;
-  a.t_next = (m.line(a.cell + (d > 0.0 ? 1 : 0)) - o) / d;
-  return a;
-}
-
-/// A ray lying exactly on grid line `across` (a row line when horizontal): it touches the
-/// cells on both sides, so it stops at the first crossing line where either side changes.
-template <class State>
-double walk_line(const CellMask& m, double o, double d, int across, int count, double t1,
-                 const State& state) {
-  const int first = d > 0.0 ? m.cell_of(o, count) + 1 : m.cell_of(o, count);
-  const int step = d > 0.0 ? 1 : -1;
-  for (int k = std::clamp(first, 0, count); k >= 0 && k <= count; k += step) {
-    const double t = (m.line(k) - o) / d;
-    if (t > t1) break;
-    const bool below = state(k - 1, across - 1) != state(k, across - 1);
-    const bool above = state(k - 1, across) != state(k, across);
-    if (t >= 0.0 && (below || above)) return t;
-  }
-  return kInf;
-}
-
-/// The general walk, touching cells at exact corner crossings.
-double walk_cells(const CellMask& m, const GridRay& r, double t0, double t1) {
-  Axis ax = start_axis(m, r.ox, r.dx, t0, m.width);
-  Axis ay = start_axis(m, r.oy, r.dy, t0, m.height);
-  if (m.blocks(ax.cell, ay.cell)) return t0;  // starts (or enters the map) inside a wall
-  while (true) {
-    const double t = std::min(ax.t_next, ay.t_next);
-    if (t > t1) return kInf;
-    bool hit = false;
-    if (ax.t_next == ay.t_next) {
-      hit = m.blocks_or_free(ax.cell + ax.step, ay.cell) ||
-            m.blocks_or_free(ax.cell, ay.cell + ay.step);
-      ax.advance(m, r.ox, r.dx);
-      ay.advance(m, r.oy, r.dy);
-    } else if (ax.t_next < ay.t_next) {
-      ax.advance(m, r.ox, r.dx);
-    } else {
-      ay.advance(m, r.oy, r.dy);
-    }
-    if (hit || m.blocks_or_free(ax.cell, ay.cell)) return t;
-  }
+/// Whether a wall covers point `along` (m) of grid line `line`. Walls are the boundaries
+/// between cells whose states differ, extended by kSnapDistance past their ends as Embree's
+/// quads are, so touching a wall's end (a cell corner) counts as a hit. `differs(line, cell)`
+/// says whether the two cells beside `line` at position `cell` differ.
+template <class Differs>
+bool wall_at(const CellMask& m, int line, double along, int count, const Differs& differs) {
+  const int cell = m.cell_of(along, count);
+  return differs(line, cell) ||
+         (along - m.line(cell) <= kSnapDistance && differs(line, cell - 1)) ||
+         (m.line(cell + 1) - along <= kSnapDistance && differs(line, cell + 1));
 }
 
 }  // namespace
@@ -90,23 +61,33 @@ double walk_cells(const CellMask& m, const GridRay& r, double t0, double t1) {
 float walk_grid(const CellMask& m, const GridRay& r, float max_range) {
   double t0 = 0.0;
   double t1 = max_range;
-  if (!clip_axis(r.ox, r.dx, m.line(m.width), t0, t1) ||
-      !clip_axis(r.oy, r.dy, m.line(m.height), t0, t1)) {
+  const double e = kSnapDistance;
+  if (!clip_axis(r.ox, r.dx, -e, m.line(m.width) + e, t0, t1) ||
+      !clip_axis(r.oy, r.dy, -e, m.line(m.height) + e, t0, t1)) {
     return max_range;
   }
-  double t = kInf;
-  const int row = m.cell_of(r.oy, m.height);
-  const int col = m.cell_of(r.ox, m.width);
-  if (r.dy == 0.0 && m.line(row) == r.oy) {
-    t = walk_line(m, r.ox, r.dx, row, m.width, t1,
-                  [&m](int a, int b) { return m.blocks_or_free(a, b); });
-  } else if (r.dx == 0.0 && m.line(col) == r.ox) {
-    t = walk_line(m, r.oy, r.dy, col, m.height, t1,
-                  [&m](int a, int b) { return m.blocks_or_free(b, a); });
-  } else {
-    t = walk_cells(m, r, t0, t1);
+  const auto column_differs = [&m](int line, int row) {
+    return m.blocks_or_free(line - 1, row) != m.blocks_or_free(line, row);
+  };
+  const auto row_differs = [&m](int line, int column) {
+    return m.blocks_or_free(column, line - 1) != m.blocks_or_free(column, line);
+  };
+  LineCursor x(m, r.ox, r.dx, t0, m.width);
+  LineCursor y(m, r.oy, r.dy, t0, m.height);
+  // Visit the crossings in order of t; a ray along a grid line never crosses it, so the walls
+  // lying in its own line are skipped, as Embree skips quads the ray lies in.
+  while (true) {
+    const double t = std::min(x.t, y.t);
+    if (t > t1) return max_range;
+    if (x.t <= y.t) {
+      if (wall_at(m, x.line, r.oy + t * r.dy, m.height, column_differs))
+        return static_cast<float>(t);
+      x.advance(m, r.ox, r.dx, m.width);
+    } else {
+      if (wall_at(m, y.line, r.ox + t * r.dx, m.width, row_differs)) return static_cast<float>(t);
+      y.advance(m, r.oy, r.dy, m.height);
+    }
   }
-  return t < static_cast<double>(max_range) ? static_cast<float>(t) : max_range;
 }
 
 }  // namespace mote::detail

@@ -18,6 +18,21 @@ namespace {
 constexpr float kWallBottom = -1.0F;  ///< m, walls span z in [-1, 1]; rays travel at z = 0
 constexpr float kWallTop = 1.0F;
 
+/// The segment lengthened by kSnapDistance at both ends. Embree's watertight test leaves the
+/// open end of a wall to edge tie-breaking, so a ray through a cell corner could pass or stop
+/// depending on the quad's orientation; the overlap makes it stop, as the grid walk does.
+detail::WallSegment extended(detail::WallSegment s) {
+  const auto e = static_cast<float>(detail::kSnapDistance);
+  if (s.y0 == s.y1) {
+    s.x0 -= e;
+    s.x1 += e;
+  } else {
+    s.y0 -= e;
+    s.y1 += e;
+  }
+  return s;
+}
+
 /// Adds one quad per wall segment, extruded in z, to a fresh geometry attached to the scene.
 void add_walls(RTCScene scene, const std::vector<detail::WallSegment>& walls) {
   RTCGeometry geometry = rtcNewGeometry(detail::embree_device(), RTC_GEOMETRY_TYPE_QUAD);
@@ -26,7 +41,7 @@ void add_walls(RTCScene scene, const std::vector<detail::WallSegment>& walls) {
   auto* quads = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), walls.size()));
   for (std::size_t w = 0; w < walls.size(); ++w) {
-    const detail::WallSegment& s = walls[w];
+    const detail::WallSegment s = extended(walls[w]);
     const float corners[12] = {s.x0, s.y0, kWallBottom, s.x1, s.y1, kWallBottom,
                                s.x1, s.y1, kWallTop,    s.x0, s.y0, kWallTop};
     for (std::size_t c = 0; c < 12; ++c) vertices[12 * w + c] = corners[c];
@@ -82,7 +97,7 @@ struct RayCaster::Impl {
       const auto row = ranges.subspan(p * beams, beams);
       if (!s.finite) {
         std::fill(row.begin(), row.end(), std::numeric_limits<float>::quiet_NaN());
-      } else if (mask.blocks_point(static_cast<float>(s.ox), static_cast<float>(s.oy))) {
+      } else if (mask.blocks_start(s.ox, s.oy)) {
         std::fill(row.begin(), row.end(), 0.0F);
       } else {
         for (std::size_t b = 0; b < beams; ++b) query.add(rays.ray(s, b), p * beams + b);
@@ -101,7 +116,7 @@ RayCaster& RayCaster::operator=(RayCaster&&) noexcept = default;
 std::size_t RayCaster::wall_count() const noexcept { return impl_->wall_count; }
 
 void RayCaster::cast(const RayBatch& batch, std::span<float> ranges) const {
-  const detail::BatchRays rays(impl_->frame, batch, ranges.size());
+  const detail::BatchRays rays(impl_->frame, impl_->mask, batch, ranges.size());
   const Impl& impl = *impl_;
   par::for_each_chunk(rays.particles(), impl.options.particle_grain,
                       [&](std::size_t begin, std::size_t end) {
@@ -115,13 +130,11 @@ void RayCaster::cast(const RayBatch& batch, std::span<float> ranges) const {
 
 float RayCaster::cast_one(Point2 origin, double angle, float max_range) const {
   detail::check_max_range(max_range);
-  const detail::GridRay ray = impl_->frame.ray(origin, angle);
+  const detail::GridRay ray = impl_->mask.prepare(impl_->frame.ray(origin, angle));
   if (!std::isfinite(ray.ox) || !std::isfinite(ray.oy) || !std::isfinite(ray.dx)) {
     return std::numeric_limits<float>::quiet_NaN();
   }
-  if (impl_->mask.blocks_point(static_cast<float>(ray.ox), static_cast<float>(ray.oy))) {
-    return 0.0F;
-  }
+  if (impl_->mask.blocks_start(ray.ox, ray.oy)) return 0.0F;
   const detail::FlushDenormals denormals_off;
   float range = max_range;
   detail::Single1 query(impl_->scene, max_range, std::span<float>(&range, 1));

@@ -31,8 +31,27 @@ int CellMask::cell_of(double v, int count) const noexcept {
   return k;
 }
 
-bool CellMask::blocks_point(double gx, double gy) const noexcept {
-  return blocks_or_free(cell_of(gx, width), cell_of(gy, height));
+double CellMask::snap_to_line(double v, int count) const noexcept {
+  const int k = std::clamp(cell_of(v, count), 0, count);
+  for (const int line_index : {k, k + 1}) {
+    if (std::abs(v - line(line_index)) <= kSnapDistance) return line(line_index);
+  }
+  return static_cast<double>(static_cast<float>(v));
+}
+
+GridRay CellMask::prepare(const GridRay& r) const noexcept {
+  return {snap_to_line(r.ox, width), snap_to_line(r.oy, height), snap_direction(r.dx),
+          snap_direction(r.dy)};
+}
+
+bool CellMask::blocks_start(double gx, double gy) const noexcept {
+  const int i = cell_of(gx, width);
+  const int j = cell_of(gy, height);
+  const bool on_column_line = i >= 0 && i <= width && line(i) == gx;
+  const bool on_row_line = j >= 0 && j <= height && line(j) == gy;
+  return blocks_or_free(i, j) || (on_column_line && blocks_or_free(i - 1, j)) ||
+         (on_row_line && blocks_or_free(i, j - 1)) ||
+         (on_column_line && on_row_line && blocks_or_free(i - 1, j - 1));
 }
 
 GridFrame::GridFrame(const Pose2& origin) noexcept
@@ -76,8 +95,9 @@ void check_batch(const RayBatch& batch, std::size_t ranges_size) {
 }
 }  // namespace
 
-BatchRays::BatchRays(const GridFrame& frame, const RayBatch& batch, std::size_t ranges_size)
-    : frame_(frame), batch_(batch) {
+BatchRays::BatchRays(const GridFrame& frame, const CellMask& mask, const RayBatch& batch,
+                     std::size_t ranges_size)
+    : frame_(frame), mask_(mask), batch_(batch) {
   check_batch(batch, ranges_size);
   beam_cos_.reserve(batch.beam_count());
   beam_sin_.reserve(batch.beam_count());
@@ -99,7 +119,8 @@ SensorFrame BatchRays::sensor(std::size_t particle) const noexcept {
   const double ps = std::sin(pt);
   const Point2 g = frame_.to_grid(px + pc * off.x - ps * off.y, py + ps * off.x + pc * off.y);
   const double heading = pt + off.theta - frame_.origin().theta;
-  SensorFrame f{g.x, g.y, std::cos(heading), std::sin(heading), true};
+  SensorFrame f{mask_.snap_to_line(g.x, mask_.width), mask_.snap_to_line(g.y, mask_.height),
+                std::cos(heading), std::sin(heading), true};
   f.finite = std::isfinite(f.ox) && std::isfinite(f.oy) && std::isfinite(f.c);
   return f;
 }

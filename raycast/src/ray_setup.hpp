@@ -5,6 +5,7 @@
 /// along the grid), so an origin yaw costs one transform per particle and the walls stay axis
 /// aligned.
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -18,6 +19,28 @@ namespace mote::detail {
 /// One cell per byte, 1 where rays stop: occupied cells and, if unknown_blocks, unknown ones.
 [[nodiscard]] std::vector<std::uint8_t> blocking_mask(const OccupancyGrid& grid,
                                                       bool unknown_blocks);
+
+/// A ray in the grid frame: origin (m) and unit direction. Casters round it to float (what
+/// Embree traces) before use, so both trace exactly the same ray.
+struct GridRay {
+  double ox = 0.0;
+  double oy = 0.0;
+  double dx = 1.0;
+  double dy = 0.0;
+};
+
+/// Origins closer than this to a grid line (m) are moved onto it. Far below any laser's
+/// resolution, and above float rounding of map coordinates up to 128 m (ulp 7.6e-6 m): a ray
+/// built on a cell edge then lies exactly on Embree's wall plane instead of an ulp to either
+/// side, where Embree's edge tolerance and the grid walk could decide differently.
+inline constexpr double kSnapDistance = 2e-5;
+/// Direction components smaller than this are zero: cos(pi / 2) is 6e-17, not 0.
+inline constexpr double kAxisSnap = 1e-12;
+
+/// A direction component as traced: tiny components zeroed, rounded to float.
+[[nodiscard]] inline double snap_direction(double d) noexcept {
+  return std::abs(d) < kAxisSnap ? 0.0 : static_cast<double>(static_cast<float>(d));
+}
 
 /// Read-only view of a blocking mask with the grid's geometry. Grid line k sits at line(k), the
 /// float product Embree's wall vertices use, and cell k is the half-open [line(k), line(k + 1)):
@@ -42,26 +65,19 @@ struct CellMask {
   }
   /// The cell k with line(k) <= v < line(k + 1), clamped to [-1, count].
   [[nodiscard]] int cell_of(double v, int count) const noexcept;
-  /// Whether a grid frame point (m) lies in a blocking cell; off-map points never do.
-  [[nodiscard]] bool blocks_point(double gx, double gy) const noexcept;
+  /// v (m) moved onto the nearest grid line when within kSnapDistance of it, rounded to float.
+  [[nodiscard]] double snap_to_line(double v, int count) const noexcept;
+  /// The ray both casters trace: origin snapped to grid lines, direction components below
+  /// kAxisSnap set to zero, everything rounded to float (what Embree traces).
+  [[nodiscard]] GridRay prepare(const GridRay& r) const noexcept;
+  /// The start rule: a sensor at grid frame point (m) reads 0 when it lies in a blocking cell or
+  /// on the boundary of one (exactly on a grid line after snapping: Embree would report the face
+  /// it sits on, or the far side of the wall). Off-map points never block.
+  [[nodiscard]] bool blocks_start(double gx, double gy) const noexcept;
 };
 
-/// A ray in the grid frame: origin (m) and unit direction. Casters round it to float (what
-/// Embree traces) before use, so both trace exactly the same ray.
-struct GridRay {
-  double ox = 0.0;
-  double oy = 0.0;
-  double dx = 1.0;
-  double dy = 0.0;
-};
-
-/// The ray rounded through float, as Embree traces it.
-[[nodiscard]] inline GridRay to_float(const GridRay& r) noexcept {
-  return {static_cast<float>(r.ox), static_cast<float>(r.oy), static_cast<float>(r.dx),
-          static_cast<float>(r.dy)};
-}
-
-/// The sensor of one particle in the grid frame: position (m) and heading as cos/sin.
+/// The sensor of one particle in the grid frame: position (m, snapped and rounded as in
+/// CellMask::prepare) and heading as cos/sin.
 struct SensorFrame {
   double ox = 0.0;
   double oy = 0.0;
@@ -92,13 +108,15 @@ class GridFrame {
 class BatchRays {
  public:
   /// Throws ConfigError when the batch or the range array do not fit together.
-  BatchRays(const GridFrame& frame, const RayBatch& batch, std::size_t ranges_size);
+  BatchRays(const GridFrame& frame, const CellMask& mask, const RayBatch& batch,
+            std::size_t ranges_size);
 
   [[nodiscard]] SensorFrame sensor(std::size_t particle) const noexcept;
   [[nodiscard]] GridRay ray(const SensorFrame& sensor, std::size_t beam) const noexcept {
     const double cb = beam_cos_[beam];
     const double sb = beam_sin_[beam];
-    return {sensor.ox, sensor.oy, sensor.c * cb - sensor.s * sb, sensor.s * cb + sensor.c * sb};
+    return {sensor.ox, sensor.oy, snap_direction(sensor.c * cb - sensor.s * sb),
+            snap_direction(sensor.s * cb + sensor.c * sb)};
   }
   [[nodiscard]] std::size_t beams() const noexcept { return beam_cos_.size(); }
   [[nodiscard]] std::size_t particles() const noexcept { return batch_.particle_count(); }
@@ -106,6 +124,7 @@ class BatchRays {
 
  private:
   const GridFrame& frame_;
+  const CellMask& mask_;
   const RayBatch& batch_;
   std::vector<double> beam_cos_;
   std::vector<double> beam_sin_;
