@@ -126,7 +126,10 @@ class BagSource final : public ScanSource {
       try {
         record = file_.next();
         if (!record) return false;
-        if (record->header.op() == BagOp::kChunk) return process_chunk(*record), true;
+        if (record->header.op() == BagOp::kChunk) {
+          process_chunk(*record);
+          return true;
+        }
         if (record->header.op() == BagOp::kConnection) add_connection(*record);
       } catch (const BagDecodeError& e) {
         const std::uint64_t at = record ? record->offset + e.offset : e.offset;
@@ -140,7 +143,6 @@ class BagSource final : public ScanSource {
   }
 
   void process_chunk(const BagRecord& record) {
-    const std::uint64_t data_at = file_.position() - record.data.size();
     try {
       chunk_ = detail::decompress_chunk(record.header.get("compression"), record.data,
                                         record.header.u32("size"), options_.max_chunk_bytes);
@@ -150,7 +152,7 @@ class BagSource final : public ScanSource {
            name_ + ": byte " + std::to_string(record.offset) + ": chunk: " + e.problem);
       return;
     }
-    std::vector<Event> events = collect_events(record.offset, data_at);
+    std::vector<Event> events = collect_events(record.offset);
     std::stable_sort(events.begin(), events.end(),
                      [](const Event& a, const Event& b) { return a.time < b.time; });
     for (const Event& e : events) dispatch(e, record.offset);
@@ -161,7 +163,7 @@ class BagSource final : public ScanSource {
            std::to_string(offset) + " of its data";
   }
 
-  std::vector<Event> collect_events(std::uint64_t chunk_at, std::uint64_t /*data_at*/) {
+  std::vector<Event> collect_events(std::uint64_t chunk_at) {
     std::vector<Event> events;
     detail::ByteReader reader(chunk_);
     try {
