@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <limits>
 #include <numbers>
 #include <unordered_map>
@@ -52,14 +51,15 @@ std::vector<int> label_bins(const std::vector<BinCoord>& bins,
                             const std::unordered_map<std::uint64_t, int>& id_of, std::int64_t nt) {
   std::vector<int> label(bins.size(), -1);
   const std::int64_t dt_max = nt >= 3 ? 1 : 0;  // with 1 or 2 theta bins every pair touches
+  std::vector<std::size_t> queue;  // FIFO of the breadth-first search: read position `head`
+  queue.reserve(bins.size());
   int next = 0;
   for (std::size_t seed = 0; seed < bins.size(); ++seed) {
     if (label[seed] >= 0) continue;
-    std::deque<int> queue{static_cast<int>(seed)};
+    queue.assign(1, seed);
     label[seed] = next;
-    while (!queue.empty()) {
-      const BinCoord b = bins[static_cast<std::size_t>(queue.front())];
-      queue.pop_front();
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const BinCoord b = bins[queue[head]];
       for (std::int64_t dx = -1; dx <= 1; ++dx) {
         for (std::int64_t dy = -1; dy <= 1; ++dy) {
           for (std::int64_t dt = -dt_max; dt <= dt_max; ++dt) {
@@ -67,7 +67,7 @@ std::vector<int> label_bins(const std::vector<BinCoord>& bins,
             const auto it = id_of.find(BinIndex::key(n));
             if (it == id_of.end() || label[static_cast<std::size_t>(it->second)] >= 0) continue;
             label[static_cast<std::size_t>(it->second)] = next;
-            queue.push_back(it->second);
+            queue.push_back(static_cast<std::size_t>(it->second));
           }
         }
       }
