@@ -53,10 +53,11 @@ enum class RngPurpose : std::uint32_t {
   kUser = 64,      ///< first value free for user code
 };
 
-/// Converts 32 random bits to a float uniform in the open interval (0, 1): 24 bits of mantissa,
-/// centred in their bucket, so the value is never 0 (safe for log) and never 1.
+/// Converts 32 random bits to a float uniform in the open interval (0, 1): 23 bits, centred in
+/// their bucket (k + 1/2) / 2^23, exact in float, so the value is never 0 (safe for log) and
+/// never 1 (24 bits would round the top bucket up to 1).
 [[nodiscard]] constexpr float bits_to_unit(std::uint32_t bits) noexcept {
-  return (static_cast<float>(bits >> 8) + 0.5F) * 0x1.0p-24F;
+  return (static_cast<float>(bits >> 9) + 0.5F) * 0x1.0p-23F;
 }
 
 /// Two independent standard normal draws from two uniforms in (0, 1) (Box-Muller).
