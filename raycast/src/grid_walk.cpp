@@ -22,35 +22,39 @@ bool clip_axis(double o, double d, double lo, double hi, double& t0, double& t1)
   return t0 <= t1;
 }
 
-/// The grid lines one axis of the ray crosses, in order: the index of the next line and the ray
-/// parameter (m) where it is crossed (Amanatides-Woo's tMax), taken from the float lattice so
-/// the walk meets exactly the lines Embree's walls stand on.
+/// The grid lines one axis of the ray crosses, in order (Amanatides-Woo's tMax): the cell the
+/// ray is in along this axis, the next line and the ray parameter (m) where it is crossed,
+/// taken from the float lattice so the walk meets exactly the lines Embree's walls stand on.
 struct LineCursor {
+  int cell = 0;
   int line = 0;
   int step = 0;
   double t = kInf;
+  double inv = 0.0;  ///< 1 / direction component
 
   LineCursor(const CellMask& m, double o, double d, double t0, int count) {
-    if (d == 0.0) return;
     const double p = o + t0 * d;
-    const int cell = m.cell_of(p, count);
+    cell = m.cell_of(p, count);
+    if (d == 0.0) return;
     step = d > 0.0 ? 1 : -1;
-    line = d > 0.0 && m.line(cell) != p ? cell + 1 : cell;
-    t = (m.line(line) - o) / d;
+    inv = 1.0 / d;
+    line = d > 0.0 ? cell + 1 : cell;
+    t = (m.line(line) - o) * inv;
   }
-  void advance(const CellMask& m, double o, double d, int count) {
+  void advance(const CellMask& m, double o, int count) {
+    cell += step;
     line += step;
-    t = line < 0 || line > count ? kInf : (m.line(line) - o) / d;
+    t = line < 0 || line > count ? kInf : (m.line(line) - o) * inv;
   }
 };
 
-/// Whether a wall covers point `along` (m) of grid line `line`. Walls are the boundaries
-/// between cells whose states differ, extended by kSnapDistance past their ends as Embree's
-/// quads are, so touching a wall's end (a cell corner) counts as a hit. `differs(line, cell)`
-/// says whether the two cells beside `line` at position `cell` differ.
+/// Whether a wall covers point `along` (m) of grid line `line`, the ray being in cell `cell`
+/// along the line. Walls are the boundaries between cells whose states differ, extended by
+/// kSnapDistance past their ends as Embree's quads are, so touching a wall's end (a cell
+/// corner) counts as a hit. `differs(line, cell)` says whether the two cells beside `line` at
+/// position `cell` differ.
 template <class Differs>
-bool wall_at(const CellMask& m, int line, double along, int count, const Differs& differs) {
-  const int cell = m.cell_of(along, count);
+bool wall_at(const CellMask& m, int line, double along, int cell, const Differs& differs) {
   return differs(line, cell) ||
          (along - m.line(cell) <= kSnapDistance && differs(line, cell - 1)) ||
          (m.line(cell + 1) - along <= kSnapDistance && differs(line, cell + 1));
@@ -80,12 +84,13 @@ float walk_grid(const CellMask& m, const GridRay& r, float max_range) {
     const double t = std::min(x.t, y.t);
     if (t > t1) return max_range;
     if (x.t <= y.t) {
-      if (wall_at(m, x.line, r.oy + t * r.dy, m.height, column_differs))
-        return static_cast<float>(t);
-      x.advance(m, r.ox, r.dx, m.width);
+      if (wall_at(m, x.line, r.oy + t * r.dy, y.cell, column_differs)) return static_cast<float>(t);
+      x.advance(m, r.ox, m.width);
     } else {
-      if (wall_at(m, y.line, r.ox + t * r.dx, m.width, row_differs)) return static_cast<float>(t);
-      y.advance(m, r.oy, r.dy, m.height);
+      if (wall_at(m, y.line, r.ox + t * r.dx, x.cell, row_differs)) {
+        return static_cast<float>(t);
+      }
+      y.advance(m, r.oy, m.height);
     }
   }
 }
