@@ -3,7 +3,6 @@
 #include "mote/maps/map_loader.hpp"
 
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -16,11 +15,16 @@ namespace mote {
 namespace {
 
 std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!std::filesystem::is_regular_file(path) || !in) {
     throw InputError(path.string(), "", "cannot open map image");
   }
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::string bytes(static_cast<std::size_t>(in.tellg()), '\0');
+  in.seekg(0);
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
+    throw InputError(path.string(), "", "cannot read map image");
+  }
+  return bytes;
 }
 
 /// amcl's reading of a map_server value: 0 free, 100 occupied, everything else unknown.

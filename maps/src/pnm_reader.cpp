@@ -78,12 +78,17 @@ void read_binary(PnmCursor& in, MapImage& img, std::size_t count) {
   }
   img.samples.resize(count);
   const std::size_t base = in.pos();
-  for (std::size_t k = 0; k < count; ++k) {
+  if (width == 1) {
+    for (std::size_t k = 0; k < count; ++k) img.samples[k] = in.byte(base + k);
+  } else {
     // 16-bit samples are big-endian (netpbm specification).
-    img.samples[k] =
-        width == 1
-            ? in.byte(base + k)
-            : static_cast<std::uint16_t>(in.byte(base + 2 * k) << 8 | in.byte(base + 2 * k + 1));
+    for (std::size_t k = 0; k < count; ++k) {
+      img.samples[k] =
+          static_cast<std::uint16_t>(in.byte(base + 2 * k) << 8 | in.byte(base + 2 * k + 1));
+    }
+  }
+  if (img.maxval == 255) return;
+  for (std::size_t k = 0; k < count; ++k) {
     if (img.samples[k] > img.maxval) in.fail(base + k * width, "sample exceeds maxval");
   }
 }
