@@ -1,9 +1,13 @@
-// PNG decoding with libpng's simplified API, which reports errors through png_image::message
-// instead of longjmp, so no C++ object is ever skipped over.
+// PNG decoding with libpng's classic API and no colour management: map_server (SDL_image)
+// reads the stored sample values as they are, so gAMA/sRGB/iCCP chunks must not change them
+// (libpng's simplified API would convert to sRGB). libpng reports errors by longjmp, so every
+// setjmp sits in a small function whose frame holds no C++ object with a destructor.
 #include <png.h>
 
+#include <csetjmp>
 #include <cstdint>
-#include <memory>
+#include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -14,63 +18,110 @@ namespace mote::detail {
 
 namespace {
 
-/// Frees the libpng read state on every path out of decode_png.
-struct PngImageGuard {
-  png_image image{};
-  PngImageGuard() { image.version = PNG_IMAGE_VERSION; }
-  ~PngImageGuard() { png_image_free(&image); }
-  PngImageGuard(const PngImageGuard&) = delete;
-  PngImageGuard& operator=(const PngImageGuard&) = delete;
+/// The bytes being decoded and the last libpng error, shared with libpng's callbacks.
+struct PngSource {
+  const unsigned char* data;
+  std::size_t size;
+  std::size_t pos;
+  char message[256];
+};
+
+void on_error(png_structp png, png_const_charp msg) {
+  auto* src = static_cast<PngSource*>(png_get_error_ptr(png));
+  std::snprintf(src->message, sizeof(src->message), "%s (near byte %zu)", msg, src->pos);
+  png_longjmp(png, 1);
+}
+
+void on_warning(png_structp /*png*/, png_const_charp /*msg*/) {}
+
+void on_read(png_structp png, png_bytep out, png_size_t length) {
+  auto* src = static_cast<PngSource*>(png_get_io_ptr(png));
+  if (src->size - src->pos < length) png_error(png, "truncated PNG data");
+  std::memcpy(out, src->data + src->pos, length);
+  src->pos += length;
+}
+
+/// Reads the header and sets the transforms: palettes to RGB, low-bit gray to 8 bits,
+/// tRNS to an alpha channel. No gamma handling. Returns false on a libpng error.
+bool read_header(png_structp png, png_infop info) {
+  if (setjmp(png_jmpbuf(png)) != 0) return false;
+  png_read_info(png, info);
+  png_set_expand(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  return true;
+}
+
+bool read_rows(png_structp png, png_infop info, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(png)) != 0) return false;
+  png_read_image(png, rows);
+  png_read_end(png, info);
+  return true;
+}
+
+/// Owns the libpng read structures.
+struct PngReader {
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  ~PngReader() { png_destroy_read_struct(&png, &info, nullptr); }
 };
 
 /// Deflate expands at most about 1032:1, so a header promising more pixel bytes than that
 /// ratio allows from the file's size is a lie; refuse it before allocating.
-void check_size_claim(const std::string& file, const png_image& image, std::size_t file_size) {
-  const auto row = static_cast<unsigned long long>(PNG_IMAGE_ROW_STRIDE(image)) *
-                   PNG_IMAGE_PIXEL_COMPONENT_SIZE(image.format);
-  const auto cells = static_cast<unsigned long long>(image.width) * image.height;
-  const unsigned long long raw = (row + 1) * image.height;
+void check_size_claim(const std::string& file, std::uint32_t w, std::uint32_t h,
+                      std::size_t row_bytes, std::size_t file_size) {
+  const auto cells = static_cast<unsigned long long>(w) * h;
+  const unsigned long long raw = (row_bytes + 1ULL) * h;
   if (cells > kMaxCells || raw > 1100ULL * file_size + 65536ULL) {
     throw InputError(file, "byte 16 (IHDR)",
-                     "header claims " + std::to_string(image.width) + " x " +
-                         std::to_string(image.height) + " pixels, more than " +
-                         std::to_string(file_size) + " bytes of PNG data can hold");
+                     "header claims " + std::to_string(w) + " x " + std::to_string(h) +
+                         " pixels, more than " + std::to_string(file_size) +
+                         " bytes of PNG data can hold");
   }
 }
 
-template <class Sample>
-MapImage finish(const std::string& file, png_image& image, int channels, std::uint32_t maxval) {
-  std::vector<Sample> buffer(PNG_IMAGE_SIZE(image) / sizeof(Sample));
-  if (png_image_finish_read(&image, /*background=*/nullptr, buffer.data(), /*row_stride=*/0,
-                            /*colormap=*/nullptr) == 0) {
-    throw InputError(file, "PNG data", std::string("cannot decode PNG: ") + image.message);
-  }
+MapImage to_samples(const std::vector<unsigned char>& pixels, std::uint32_t w, std::uint32_t h,
+                    int channels, int depth) {
   MapImage img;
-  img.width = static_cast<int>(image.width);
-  img.height = static_cast<int>(image.height);
+  img.width = static_cast<int>(w);
+  img.height = static_cast<int>(h);
   img.channels = channels;
-  img.maxval = maxval;
-  img.samples.assign(buffer.begin(), buffer.end());
+  img.maxval = depth == 16 ? 65535 : 255;
+  const std::size_t count = static_cast<std::size_t>(w) * h * static_cast<std::size_t>(channels);
+  img.samples.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    // 16-bit PNG samples are big-endian.
+    img.samples[k] = depth == 16
+                         ? static_cast<std::uint16_t>(pixels[2 * k] << 8 | pixels[2 * k + 1])
+                         : pixels[k];
+  }
   return img;
 }
 
 }  // namespace
 
 MapImage decode_png(const std::string& file, std::string_view bytes) {
-  PngImageGuard guard;
-  png_image& image = guard.image;
-  if (png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()) == 0) {
-    throw InputError(file, "PNG header", std::string("cannot read PNG: ") + image.message);
+  PngSource src{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), 0, {}};
+  PngReader r;
+  r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &src, on_error, on_warning);
+  if (r.png != nullptr) r.info = png_create_info_struct(r.png);
+  if (r.info == nullptr) throw InputError(file, "", "out of memory creating the PNG reader");
+  png_set_read_fn(r.png, &src, on_read);
+  if (!read_header(r.png, r.info)) {
+    throw InputError(file, "PNG header", std::string("cannot read PNG: ") + src.message);
   }
-  // Keep the file's own channels (map_server averages RGB itself, not with luminance weights);
-  // palettes are expanded. 16-bit files stay 16-bit and linear, 8-bit files untouched.
-  image.format &= ~static_cast<png_uint_32>(PNG_FORMAT_FLAG_COLORMAP);
-  const int channels = static_cast<int>(PNG_IMAGE_SAMPLE_CHANNELS(image.format));
-  check_size_claim(file, image, bytes.size());
-  if ((image.format & PNG_FORMAT_FLAG_LINEAR) != 0) {
-    return finish<std::uint16_t>(file, image, channels, 65535);
+  const std::uint32_t w = png_get_image_width(r.png, r.info);
+  const std::uint32_t h = png_get_image_height(r.png, r.info);
+  const std::size_t row_bytes = png_get_rowbytes(r.png, r.info);
+  check_size_claim(file, w, h, row_bytes, bytes.size());
+  std::vector<unsigned char> pixels(row_bytes * h);
+  std::vector<png_bytep> rows(h);
+  for (std::size_t j = 0; j < h; ++j) rows[j] = pixels.data() + j * row_bytes;
+  if (!read_rows(r.png, r.info, rows.data())) {
+    throw InputError(file, "PNG data", std::string("cannot decode PNG: ") + src.message);
   }
-  return finish<std::uint8_t>(file, image, channels, 255);
+  return to_samples(pixels, w, h, png_get_channels(r.png, r.info),
+                    png_get_bit_depth(r.png, r.info));
 }
 
 }  // namespace mote::detail
