@@ -1,0 +1,59 @@
+#pragma once
+/// \file
+/// Accuracy and timing figures of a localization run: absolute trajectory error against a
+/// reference in the map frame (no alignment, since MCL localizes in the map's own frame), the
+/// time from which the filter stays converged, and percentiles of per-update times.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "mote/replay/tum.hpp"
+
+namespace mote::replay {
+
+/// How estimates are paired with reference poses and what "converged" means.
+struct MetricOptions {
+  double match_tolerance_s = 0.05;  ///< s, largest stamp gap to the nearest reference pose
+  double converged_m = 0.5;         ///< m, position error under which a pose counts as converged
+  double converged_deg = 10.0;      ///< degrees, heading error bound for converged
+  double start_stamp = 0.0;         ///< s, time origin of converged_at_s (the first scan)
+};
+
+/// Errors of an estimated trajectory against a reference.
+struct TrajectoryErrors {
+  std::size_t matched = 0;        ///< estimates that found a reference pose within tolerance
+  double ate_rmse_m = 0.0;        ///< m, RMS of position errors over matched poses (NaN if 0)
+  double heading_rmse_deg = 0.0;  ///< degrees, RMS of wrapped heading errors (NaN if 0)
+  double max_error_m = 0.0;       ///< m, largest position error
+  /// s after start_stamp of the first matched estimate from which every later matched estimate
+  /// is within both bounds; nullopt when the last one is not.
+  std::optional<double> converged_at_s;
+};
+
+/// The reference pose nearest in time to `stamp` within `tolerance` s, or nullopt. `reference`
+/// must be sorted by stamp (sort_by_stamp).
+[[nodiscard]] std::optional<StampedPose> match_reference(std::span<const StampedPose> reference,
+                                                         double stamp, double tolerance);
+
+/// A copy of poses sorted by stamp (stable, so equal stamps keep file order).
+[[nodiscard]] std::vector<StampedPose> sort_by_stamp(std::span<const StampedPose> poses);
+
+/// Compares `estimate` (in run order) with `reference` (any order).
+[[nodiscard]] TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
+                                                    std::span<const StampedPose> reference,
+                                                    const MetricOptions& options = {});
+
+/// Mean and order statistics of a sample (e.g. update times, ms). All zero for an empty sample.
+struct Percentiles {
+  double mean = 0.0;
+  double p50 = 0.0;  ///< median (nearest rank)
+  double p99 = 0.0;  ///< 99th percentile (nearest rank)
+  double max = 0.0;
+};
+
+/// Percentiles of `values` by the nearest-rank method.
+[[nodiscard]] Percentiles summarize(std::vector<double> values);
+
+}  // namespace mote::replay

@@ -1,0 +1,91 @@
+#pragma once
+/// \file
+/// The replay loop behind `mote replay`: feed a recorded log through a Localizer, collect the
+/// estimated trajectory, per-update timings and outcome counts, and compare with a reference.
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mote/core/pose.hpp"
+#include "mote/engine/localizer.hpp"
+#include "mote/engine/localizer_config.hpp"
+#include "mote/maps/occupancy_grid.hpp"
+#include "mote/replay/metrics.hpp"
+#include "mote/replay/scan_source.hpp"
+#include "mote/replay/tum.hpp"
+
+namespace mote::replay {
+
+/// How the filter is initialized.
+enum class InitMode : std::uint8_t {
+  kAuto,    ///< at the reference pose of the first scan when a reference is given, else global
+  kGlobal,  ///< uniform over free space (Thrun table 8.2, global localization)
+  kPose,    ///< Gaussian around ReplayOptions::init_pose
+};
+
+/// Inputs of one replay run. The config is final (file and flags already merged).
+struct ReplayOptions {
+  std::filesystem::path map;        ///< map_server YAML
+  std::filesystem::path log;        ///< CARMEN (.clf, .log) or ROS 1 bag (.bag)
+  std::filesystem::path reference;  ///< TUM reference trajectory; empty = none
+  LocalizerConfig config;
+  ReaderOptions reader;
+  InitMode init = InitMode::kAuto;
+  Pose2 init_pose;                   ///< m, rad; used by InitMode::kPose
+  double init_sigma_xy = 0.1;        ///< m, std. dev. of the initial cloud in x and y
+  double init_sigma_theta = 0.0873;  ///< rad (5 degrees), std. dev. of the initial heading
+  MetricOptions metrics;             ///< start_stamp is set to the first scan's stamp
+  /// Called after every scan with the number of scans processed so far; may be empty.
+  std::function<void(std::size_t scans)> progress;
+};
+
+/// One filter update that ran.
+struct UpdateRecord {
+  double stamp = 0.0;  ///< s, the scan's stamp
+  PhaseTimes ms;       ///< wall-clock phase times
+  std::size_t particles = 0;
+  std::size_t weighed = 0;
+  std::size_t beams = 0;
+};
+
+/// Number of UpdateOutcome values (they are counted by their integer value).
+inline constexpr std::size_t kOutcomeCount = 6;
+
+/// Everything a replay run produced.
+struct ReplayResult {
+  /// An empty result for a run on `grid` with `cfg`.
+  ReplayResult(OccupancyGrid grid, LocalizerConfig cfg) : map(std::move(grid)), config(cfg) {}
+
+  OccupancyGrid map;                    ///< the map the run used
+  LocalizerConfig config;               ///< the config it ran with
+  int threads = 0;                      ///< threads the filter ran on
+  std::size_t scans = 0;                ///< scan frames read
+  double first_stamp = 0.0;             ///< s, stamp of the first scan
+  std::vector<StampedPose> trajectory;  ///< best-cluster mean after every update that ran
+  std::vector<UpdateRecord> updates;    ///< one per update that ran
+  std::array<std::size_t, kOutcomeCount> outcomes{};  ///< update() calls by UpdateOutcome
+  std::string first_unusual_reason;                   ///< reason of the first non-normal outcome
+  ReadStats reader;                                   ///< what the log reader skipped
+  std::vector<StampedPose> reference;                 ///< the reference trajectory (may be empty)
+  std::optional<TrajectoryErrors> errors;             ///< with a reference
+  std::vector<Pose2> final_particles;                 ///< the particle cloud after the last scan
+  double wall_s = 0.0;                                ///< s, wall-clock time of the whole loop
+};
+
+/// Loads the map, log and reference, runs the filter over every scan and measures the result.
+/// Throws InputError for malformed files, ConfigError for an invalid config.
+[[nodiscard]] ReplayResult run_replay(const ReplayOptions& options);
+
+/// Name of an outcome as written in reports ("updated", "not_moved", ...).
+[[nodiscard]] const char* outcome_name(UpdateOutcome outcome) noexcept;
+
+/// Name of a laser model as on the command line ("likelihood_field", "beam").
+[[nodiscard]] const char* model_name(LaserModel model) noexcept;
+
+}  // namespace mote::replay

@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// What `mote replay` writes: report.json (figures of the run), trajectory.tum (the estimate)
+/// and map.png (map, trajectories, final particles), plus the summary table it prints.
+
+#include <filesystem>
+#include <iosfwd>
+
+#include "mote/replay/metrics.hpp"
+#include "mote/replay/replay_run.hpp"
+
+namespace mote::replay {
+
+/// Figures derived from the per-update records of a run.
+struct RunFigures {
+  std::size_t updates = 0;      ///< filter updates that ran
+  double particles_mean = 0.0;  ///< mean particle count after those updates
+  Percentiles update_ms;        ///< total update time, ms
+  PhaseTimes phase_mean_ms;     ///< mean time of each phase, ms
+  /// Particle-beam likelihoods evaluated per second of sensor phase (the sensor model's rate).
+  double particle_beams_per_s = 0.0;
+};
+
+/// Figures of a run.
+[[nodiscard]] RunFigures run_figures(const ReplayResult& result);
+
+/// Writes report.json's content: updates, scans, threads, model, particles_mean, update_ms
+/// {mean,p50,p99,max}, phase_ms, particle_beams_per_s, outcomes, reader stats, and with a
+/// reference ate_rmse_m, heading_rmse_deg and converged_at_s (null when never or undefined).
+void write_report_json(std::ostream& out, const ReplayResult& result);
+
+/// Prints the human-readable summary table.
+void print_summary(std::ostream& out, const ReplayResult& result);
+
+/// Creates `dir` if needed and writes report.json, trajectory.tum and map.png into it.
+/// Throws mote::Error when a file cannot be written.
+void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result);
+
+}  // namespace mote::replay

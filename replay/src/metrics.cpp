@@ -1,0 +1,126 @@
+// Trajectory error metrics (ATE in the map frame, heading RMSE, convergence) and percentiles.
+#include "mote/replay/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+
+#include "mote/core/pose.hpp"
+
+namespace mote::replay {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+struct PoseError {
+  double stamp = 0.0;
+  double position_m = 0.0;
+  double heading_deg = 0.0;
+};
+
+// Nearest-rank percentile of a sorted sample: the smallest value with at least p of the sample
+// at or below it.
+double nearest_rank(const std::vector<double>& sorted, double p) {
+  const auto n = static_cast<double>(sorted.size());
+  const auto rank = static_cast<std::size_t>(std::max(1.0, std::ceil(p * n)));
+  return sorted[std::min(rank, sorted.size()) - 1];
+}
+
+std::vector<PoseError> pose_errors(std::span<const StampedPose> estimate,
+                                   std::span<const StampedPose> reference, double tolerance) {
+  std::vector<PoseError> errors;
+  errors.reserve(estimate.size());
+  for (const StampedPose& e : estimate) {
+    const auto ref = match_reference(reference, e.stamp, tolerance);
+    if (!ref) continue;
+    const double dx = e.pose.x - ref->pose.x;
+    const double dy = e.pose.y - ref->pose.y;
+    const double dtheta = wrap_angle(e.pose.theta - ref->pose.theta);
+    errors.push_back({e.stamp, std::hypot(dx, dy), std::abs(dtheta) * kRadToDeg});
+  }
+  return errors;
+}
+
+// The first index from which every error stays within the bounds, scanning from the end.
+std::optional<std::size_t> converged_from(const std::vector<PoseError>& errors,
+                                          const MetricOptions& options) {
+  std::optional<std::size_t> from;
+  for (std::size_t k = errors.size(); k-- > 0;) {
+    const bool ok =
+        errors[k].position_m < options.converged_m && errors[k].heading_deg < options.converged_deg;
+    if (!ok) break;
+    from = k;
+  }
+  return from;
+}
+
+}  // namespace
+
+std::vector<StampedPose> sort_by_stamp(std::span<const StampedPose> poses) {
+  std::vector<StampedPose> sorted(poses.begin(), poses.end());
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
+  return sorted;
+}
+
+std::optional<StampedPose> match_reference(std::span<const StampedPose> reference, double stamp,
+                                           double tolerance) {
+  const auto later = std::lower_bound(reference.begin(), reference.end(), stamp,
+                                      [](const StampedPose& p, double t) { return p.stamp < t; });
+  std::optional<StampedPose> best;
+  double best_gap = std::numeric_limits<double>::infinity();
+  const auto consider = [&](auto it) {
+    const double gap = std::abs(it->stamp - stamp);
+    if (gap <= tolerance && gap < best_gap) {
+      best = *it;
+      best_gap = gap;
+    }
+  };
+  if (later != reference.end()) consider(later);
+  if (later != reference.begin()) consider(std::prev(later));
+  return best;
+}
+
+TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
+                                      std::span<const StampedPose> reference,
+                                      const MetricOptions& options) {
+  const std::vector<StampedPose> sorted = sort_by_stamp(reference);
+  const std::vector<PoseError> errors = pose_errors(estimate, sorted, options.match_tolerance_s);
+  TrajectoryErrors out;
+  out.matched = errors.size();
+  if (errors.empty()) {
+    out.ate_rmse_m = std::numeric_limits<double>::quiet_NaN();
+    out.heading_rmse_deg = std::numeric_limits<double>::quiet_NaN();
+    return out;
+  }
+  double sum_p = 0.0;
+  double sum_h = 0.0;
+  for (const PoseError& e : errors) {
+    sum_p += e.position_m * e.position_m;
+    sum_h += e.heading_deg * e.heading_deg;
+    out.max_error_m = std::max(out.max_error_m, e.position_m);
+  }
+  const auto n = static_cast<double>(errors.size());
+  out.ate_rmse_m = std::sqrt(sum_p / n);
+  out.heading_rmse_deg = std::sqrt(sum_h / n);
+  if (const auto from = converged_from(errors, options)) {
+    out.converged_at_s = errors[*from].stamp - options.start_stamp;
+  }
+  return out;
+}
+
+Percentiles summarize(std::vector<double> values) {
+  Percentiles out;
+  if (values.empty()) return out;
+  std::sort(values.begin(), values.end());
+  out.mean =
+      std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+  out.p50 = nearest_rank(values, 0.50);
+  out.p99 = nearest_rank(values, 0.99);
+  out.max = values.back();
+  return out;
+}
+
+}  // namespace mote::replay

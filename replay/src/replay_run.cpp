@@ -1,0 +1,123 @@
+// The replay loop: log -> Localizer -> trajectory, timings, outcome counts and errors.
+#include "mote/replay/replay_run.hpp"
+
+#include <Eigen/Core>
+#include <chrono>
+#include <utility>
+
+#include "mote/core/error.hpp"
+#include "mote/maps/map_loader.hpp"
+
+namespace mote::replay {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Eigen::Matrix3d initial_covariance(const ReplayOptions& options) {
+  const double sxy = options.init_sigma_xy;
+  const double st = options.init_sigma_theta;
+  return Eigen::Vector3d(sxy * sxy, sxy * sxy, st * st).asDiagonal();
+}
+
+// kAuto starts at the reference pose of the first scan (nearest stamp, else the first reference
+// pose), so tracking runs can be scored from their first update; without a reference it is global.
+void initialize(Localizer& filter, const ReplayOptions& options,
+                const std::vector<StampedPose>& sorted_reference, double first_stamp) {
+  if (options.init == InitMode::kPose) {
+    filter.initialize(options.init_pose, initial_covariance(options));
+    return;
+  }
+  if (options.init == InitMode::kGlobal || sorted_reference.empty()) {
+    filter.initialize_global();
+    return;
+  }
+  const auto match =
+      match_reference(sorted_reference, first_stamp, options.metrics.match_tolerance_s);
+  const Pose2 start = match ? match->pose : sorted_reference.front().pose;
+  filter.initialize(start, initial_covariance(options));
+}
+
+void record_update(ReplayResult& result, const Localizer& filter, double stamp) {
+  const UpdateStats& stats = filter.last_update();
+  result.trajectory.push_back({stamp, filter.estimate().best().mean});
+  result.updates.push_back({stamp, stats.ms, stats.particles, stats.weighed, stats.beams});
+}
+
+void count_outcome(ReplayResult& result, const UpdateStats& stats) {
+  ++result.outcomes[static_cast<std::size_t>(stats.outcome)];
+  const bool unusual = stats.outcome != UpdateOutcome::kUpdated &&
+                       stats.outcome != UpdateOutcome::kInitialized &&
+                       stats.outcome != UpdateOutcome::kNotMoved;
+  if (unusual && result.first_unusual_reason.empty()) result.first_unusual_reason = stats.reason;
+}
+
+std::vector<Pose2> particle_poses(const Localizer& filter) {
+  const ConstParticleView view = filter.particles();
+  std::vector<Pose2> poses(view.size());
+  for (std::size_t i = 0; i < view.size(); ++i) poses[i] = view.pose(i);
+  return poses;
+}
+
+// Runs every frame of the log through the filter (initialized on the first frame).
+void run_frames(ReplayResult& result, Localizer& filter, ScanSource& source,
+                const ReplayOptions& options, const std::vector<StampedPose>& sorted_reference) {
+  while (auto frame = source.next()) {
+    if (result.scans == 0) {
+      result.first_stamp = frame->stamp;
+      initialize(filter, options, sorted_reference, frame->stamp);
+    }
+    ++result.scans;
+    filter.update(frame->odometry, frame->scan);
+    count_outcome(result, filter.last_update());
+    if (filter.last_update().ran()) record_update(result, filter, frame->stamp);
+    if (options.progress) options.progress(result.scans);
+  }
+}
+
+}  // namespace
+
+ReplayResult run_replay(const ReplayOptions& options) {
+  ReplayResult result{load_map(options.map), options.config};
+  if (!options.reference.empty()) result.reference = read_tum(options.reference);
+  const std::vector<StampedPose> sorted_reference = sort_by_stamp(result.reference);
+  auto source = open_scan_log(options.log, options.reader);
+  Localizer filter(result.map, options.config);
+  result.threads = filter.threads();
+
+  const auto start = Clock::now();
+  run_frames(result, filter, *source, options, sorted_reference);
+  result.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+
+  result.reader = source->stats();
+  result.final_particles = particle_poses(filter);
+  if (!result.reference.empty()) {
+    MetricOptions metrics = options.metrics;
+    metrics.start_stamp = result.first_stamp;
+    result.errors = compare_trajectories(result.trajectory, sorted_reference, metrics);
+  }
+  return result;
+}
+
+const char* outcome_name(UpdateOutcome outcome) noexcept {
+  switch (outcome) {
+    case UpdateOutcome::kUpdated:
+      return "updated";
+    case UpdateOutcome::kInitialized:
+      return "initialized";
+    case UpdateOutcome::kNotMoved:
+      return "not_moved";
+    case UpdateOutcome::kRejectedOdometry:
+      return "rejected_odometry";
+    case UpdateOutcome::kRejectedScan:
+      return "rejected_scan";
+    case UpdateOutcome::kUnexplainedScan:
+      return "unexplained_scan";
+  }
+  return "unknown";
+}
+
+const char* model_name(LaserModel model) noexcept {
+  return model == LaserModel::kBeam ? "beam" : "likelihood_field";
+}
+
+}  // namespace mote::replay

@@ -1,0 +1,158 @@
+// report.json, the summary table and the output folder of a replay run.
+#include "mote/replay/report.hpp"
+
+#include <cstdint>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+
+#include "mote/core/error.hpp"
+#include "mote/replay/map_image.hpp"
+#include "mote/replay/report_json.hpp"
+
+namespace mote::replay {
+namespace {
+
+void add_phases(PhaseTimes& sum, const PhaseTimes& ms) {
+  sum.motion += ms.motion;
+  sum.sensor += ms.sensor;
+  sum.normalize += ms.normalize;
+  sum.resample += ms.resample;
+  sum.estimate += ms.estimate;
+  sum.total += ms.total;
+}
+
+PhaseTimes scaled(PhaseTimes p, double s) {
+  return {p.motion * s, p.sensor * s, p.normalize * s, p.resample * s, p.estimate * s, p.total * s};
+}
+
+void write_timing(JsonWriter& json, const RunFigures& f) {
+  json.key("update_ms").begin_object();
+  json.member("mean", f.update_ms.mean).member("p50", f.update_ms.p50);
+  json.member("p99", f.update_ms.p99).member("max", f.update_ms.max);
+  json.end_object();
+  const PhaseTimes& p = f.phase_mean_ms;
+  json.key("phase_ms").begin_object();
+  json.member("motion", p.motion).member("sensor", p.sensor).member("normalize", p.normalize);
+  json.member("resample", p.resample).member("estimate", p.estimate);
+  json.end_object();
+  json.member("particle_beams_per_s", f.particle_beams_per_s);
+}
+
+void write_outcomes(JsonWriter& json, const ReplayResult& r) {
+  json.key("outcomes").begin_object();
+  for (std::size_t k = 0; k < kOutcomeCount; ++k) {
+    json.member(outcome_name(static_cast<UpdateOutcome>(k)), std::uint64_t{r.outcomes[k]});
+  }
+  json.end_object();
+  if (!r.first_unusual_reason.empty()) json.member("first_unusual_reason", r.first_unusual_reason);
+  json.key("reader").begin_object();
+  json.member("records_read", std::uint64_t{r.reader.records_read});
+  json.member("records_ignored", std::uint64_t{r.reader.records_ignored});
+  json.member("records_skipped", std::uint64_t{r.reader.records_skipped});
+  json.member("bytes_skipped", std::uint64_t{r.reader.bytes_skipped});
+  json.member("first_error", r.reader.first_error);
+  json.end_object();
+}
+
+void write_errors(JsonWriter& json, const ReplayResult& r) {
+  if (!r.errors) return;
+  json.member("reference_matched", std::uint64_t{r.errors->matched});
+  json.member("ate_rmse_m", r.errors->ate_rmse_m);
+  json.member("heading_rmse_deg", r.errors->heading_rmse_deg);
+  json.member("max_error_m", r.errors->max_error_m);
+  json.member("converged_at_s", r.errors->converged_at_s);
+}
+
+std::string format_ms(const Percentiles& p) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << p.mean << " mean, " << p.p50 << " p50, " << p.p99
+    << " p99, " << p.max << " max";
+  return s.str();
+}
+
+void row(std::ostream& out, const char* name, const std::string& value) {
+  out << "  " << std::left << std::setw(22) << name << value << '\n';
+}
+
+template <typename T>
+std::string str(const T& v, int precision = 3) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(precision) << v;
+  return s.str();
+}
+
+}  // namespace
+
+RunFigures run_figures(const ReplayResult& result) {
+  RunFigures f;
+  f.updates = result.updates.size();
+  if (f.updates == 0) return f;
+  std::vector<double> totals;
+  double particles = 0.0;
+  double particle_beams = 0.0;
+  PhaseTimes sum;
+  for (const UpdateRecord& u : result.updates) {
+    totals.push_back(u.ms.total);
+    particles += static_cast<double>(u.particles);
+    particle_beams += static_cast<double>(u.weighed) * static_cast<double>(u.beams);
+    add_phases(sum, u.ms);
+  }
+  const double inv = 1.0 / static_cast<double>(f.updates);
+  f.particles_mean = particles * inv;
+  f.update_ms = summarize(std::move(totals));
+  f.phase_mean_ms = scaled(sum, inv);
+  if (sum.sensor > 0.0) f.particle_beams_per_s = particle_beams / (sum.sensor * 1e-3);
+  return f;
+}
+
+void write_report_json(std::ostream& out, const ReplayResult& result) {
+  const RunFigures f = run_figures(result);
+  JsonWriter json(out);
+  json.begin_object();
+  json.member("updates", std::uint64_t{f.updates}).member("scans", std::uint64_t{result.scans});
+  json.member("threads", result.threads);
+  json.member("model", model_name(result.config.laser_model_type));
+  json.member("seed", std::uint64_t{result.config.seed});
+  json.member("min_particles", result.config.min_particles);
+  json.member("max_particles", result.config.max_particles);
+  json.member("beams", result.config.max_beams);
+  json.member("particles_mean", f.particles_mean);
+  json.member("wall_s", result.wall_s);
+  write_timing(json, f);
+  write_outcomes(json, result);
+  write_errors(json, result);
+  json.end_object();
+}
+
+void print_summary(std::ostream& out, const ReplayResult& result) {
+  const RunFigures f = run_figures(result);
+  out << "mote replay summary\n";
+  row(out, "scans / updates", std::to_string(result.scans) + " / " + std::to_string(f.updates));
+  row(out, "model", model_name(result.config.laser_model_type));
+  row(out, "threads", std::to_string(result.threads));
+  row(out, "particles (mean)", str(f.particles_mean, 0));
+  row(out, "update ms", format_ms(f.update_ms));
+  row(out, "particle-beams/s", str(f.particle_beams_per_s / 1e6, 1) + " M");
+  row(out, "skipped records", std::to_string(result.reader.records_skipped));
+  if (!result.errors) return;
+  const TrajectoryErrors& e = *result.errors;
+  row(out, "matched poses", std::to_string(e.matched));
+  row(out, "ATE RMSE", str(e.ate_rmse_m, 4) + " m");
+  row(out, "heading RMSE", str(e.heading_rmse_deg, 3) + " deg");
+  row(out, "converged", e.converged_at_s ? "yes, at " + str(*e.converged_at_s, 1) + " s" : "no");
+}
+
+void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(dir.string() + ": cannot create output folder: " + ec.message());
+  std::ofstream json(dir / "report.json");
+  write_report_json(json, result);
+  if (!json.good()) throw Error((dir / "report.json").string() + ": cannot write");
+  write_tum(dir / "trajectory.tum", result.trajectory);
+  MapOverlay overlay{result.reference, result.trajectory, result.final_particles};
+  write_map_png(dir / "map.png", result.map, overlay);
+}
+
+}  // namespace mote::replay

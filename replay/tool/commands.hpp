@@ -1,0 +1,24 @@
+#pragma once
+// The mote tool's commands. Each returns the process exit status and throws UsageError (status 2)
+// or mote::Error (status 1) on failure; main() turns those into one line on stderr.
+
+#include <filesystem>
+#include <span>
+
+#include "mote/replay/replay_run.hpp"
+
+namespace mote::tool {
+
+/// `mote replay`: a recorded log through the filter; writes report.json, trajectory.tum, map.png.
+int replay_command(std::span<char* const> args);
+/// `mote simulate`: a simulated log on a map.
+int simulate_command(std::span<char* const> args);
+/// `mote run`: simulate on the bundled floor plan, then replay with global initialization.
+int run_command(std::span<char* const> args);
+
+/// Runs a replay with a progress bar on stderr (when it is a terminal), writes the outputs into
+/// out_dir and prints the summary table on stdout. Returns the replay's result.
+replay::ReplayResult replay_and_report(replay::ReplayOptions options,
+                                       const std::filesystem::path& out_dir);
+
+}  // namespace mote::tool

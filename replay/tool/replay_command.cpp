@@ -1,0 +1,140 @@
+// `mote replay`: flags -> ReplayOptions (config file first, flags over it) -> run -> outputs.
+#include <array>
+#include <iostream>
+#include <numbers>
+
+#include "args.hpp"
+#include "commands.hpp"
+#include "mote/replay/report.hpp"
+#include "progress.hpp"
+
+namespace mote::tool {
+namespace {
+
+constexpr std::array<FlagSpec, 16> kFlags{{
+    {"map", "MAP.yaml", "map_server map (required)"},
+    {"log", "LOG", "recorded log: CARMEN .clf/.log or ROS 1 .bag (required)"},
+    {"out", "DIR", "output folder, created if missing (required)"},
+    {"reference", "REF.tum", "reference trajectory (TUM); enables accuracy figures"},
+    {"config", "CONFIG.yaml", "LocalizerConfig YAML (flat amcl names or nav2 params)"},
+    {"model", "NAME", "likelihood_field or beam (default likelihood_field)"},
+    {"particles", "N", "fixed particle count: min = max = N"},
+    {"min-particles", "N", "KLD lower bound (default 500)"},
+    {"max-particles", "N", "KLD upper bound and initial count (default 2000)"},
+    {"beams", "N", "beams used per scan (default 60)"},
+    {"threads", "N", "worker threads, 0 = every core (default 0)"},
+    {"seed", "N", "random seed (default 42)"},
+    {"init", "MODE", "global, or reference (default: reference if given, else global)"},
+    {"init-pose", "X,Y,THETA", "start around this pose (m, m, rad), 0.1 m / 5 deg std"},
+    {"lenient", "", "skip malformed log records (counted in the report) instead of failing"},
+    {"quiet", "", "no summary table on stdout"},
+}};
+
+constexpr std::string_view kUsage =
+    "mote replay --map MAP.yaml --log LOG --out DIR [--reference REF.tum] [flags]";
+constexpr std::string_view kAbout =
+    "Runs a recorded log through the particle filter and writes DIR/report.json (timings,\n"
+    "accuracy), DIR/trajectory.tum (estimate after every update) and DIR/map.png.";
+
+Pose2 parse_pose(const ParsedArgs& args) {
+  const std::string text = *args.text("init-pose");
+  std::array<double, 3> v{};
+  std::size_t start = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t comma = k < 2 ? text.find(',', start) : text.size();
+    if (comma == std::string::npos) throw args.error("init-pose", "expects X,Y,THETA");
+    const auto x = parse_real(std::string_view(text).substr(start, comma - start));
+    if (!x) throw args.error("init-pose", "expects three numbers X,Y,THETA, got '" + text + "'");
+    v[k] = *x;
+    start = comma + 1;
+  }
+  return {v[0], v[1], wrap_angle(v[2])};
+}
+
+int to_int(std::int64_t v) { return static_cast<int>(v); }
+
+void apply_counts(const ParsedArgs& args, LocalizerConfig& c) {
+  constexpr std::int64_t kMaxCount = 100'000'000;
+  if (auto n = args.integer("min-particles", 1, kMaxCount)) c.min_particles = to_int(*n);
+  if (auto n = args.integer("max-particles", 1, kMaxCount)) c.max_particles = to_int(*n);
+  if (auto n = args.integer("particles", 1, kMaxCount))
+    c.min_particles = c.max_particles = to_int(*n);
+  if (auto n = args.integer("beams", 1, 100'000)) c.max_beams = to_int(*n);
+  if (auto n = args.integer("threads", 0, 1024)) c.threads = to_int(*n);
+  if (auto n = args.integer("seed", 0, INT64_MAX)) c.seed = static_cast<std::uint64_t>(*n);
+}
+
+void apply_model(const ParsedArgs& args, LocalizerConfig& c) {
+  const auto model = args.text("model");
+  if (!model) return;
+  if (*model == "likelihood_field") {
+    c.laser_model_type = LaserModel::kLikelihoodField;
+  } else if (*model == "beam") {
+    c.laser_model_type = LaserModel::kBeam;
+  } else {
+    throw args.error("model", "must be likelihood_field or beam, got '" + *model + "'");
+  }
+}
+
+void apply_init(const ParsedArgs& args, replay::ReplayOptions& o) {
+  if (args.has("init") && args.has("init-pose"))
+    throw args.error("init", "and --init-pose exclude each other");
+  if (args.has("init-pose")) {
+    o.init = replay::InitMode::kPose;
+    o.init_pose = parse_pose(args);
+  } else if (const auto mode = args.text("init")) {
+    if (*mode == "global") {
+      o.init = replay::InitMode::kGlobal;
+    } else if (*mode == "reference" && !o.reference.empty()) {
+      o.init = replay::InitMode::kAuto;
+    } else {
+      throw args.error("init",
+                       "must be global, or reference with --reference; got '" + *mode + "'");
+    }
+  }
+}
+
+replay::ReplayOptions replay_options(const ParsedArgs& args) {
+  replay::ReplayOptions o;
+  o.map = args.required("map");
+  o.log = args.required("log");
+  if (auto ref = args.text("reference")) o.reference = *ref;
+  apply_init(args, o);
+  o.reader.lenient = args.has("lenient");
+  if (auto path = args.text("config")) {
+    LoadedConfig loaded = load_config(*path);
+    for (const std::string& w : loaded.warnings) std::cerr << "mote replay: warning: " << w << '\n';
+    o.config = loaded.config;
+  }
+  apply_counts(args, o.config);
+  apply_model(args, o.config);
+  return o;
+}
+
+}  // namespace
+
+replay::ReplayResult replay_and_report(replay::ReplayOptions options,
+                                       const std::filesystem::path& out_dir) {
+  options.progress = make_progress(options.log, options.reader);
+  replay::ReplayResult result = replay::run_replay(options);
+  finish_progress(options.progress);
+  replay::write_replay_outputs(out_dir, result);
+  return result;
+}
+
+int replay_command(std::span<char* const> words) {
+  const ParsedArgs args = parse_args("replay", words, kFlags);
+  if (args.has("help")) {
+    print_help(std::cout, kUsage, kAbout, kFlags);
+    return 0;
+  }
+  const std::filesystem::path out = args.required("out");
+  const replay::ReplayResult result = replay_and_report(replay_options(args), out);
+  if (!args.has("quiet")) {
+    replay::print_summary(std::cout, result);
+    std::cout << "  outputs               " << out.string() << '\n';
+  }
+  return 0;
+}
+
+}  // namespace mote::tool

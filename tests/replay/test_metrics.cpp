@@ -1,0 +1,119 @@
+// Trajectory metrics on hand-made trajectories: ATE, heading RMSE, matching, convergence.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "mote/replay/metrics.hpp"
+
+namespace mote::replay {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+std::vector<StampedPose> straight_line(std::size_t n, double dt) {
+  std::vector<StampedPose> out;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = 100.0 + static_cast<double>(k) * dt;
+    out.push_back({t, {static_cast<double>(k) * 0.1, 0.0, 0.3}});
+  }
+  return out;
+}
+
+TEST(Metrics, IdenticalTrajectoriesHaveZeroError) {
+  const auto ref = straight_line(50, 0.1);
+  const TrajectoryErrors e = compare_trajectories(ref, ref);
+  EXPECT_EQ(e.matched, 50U);
+  EXPECT_DOUBLE_EQ(e.ate_rmse_m, 0.0);
+  EXPECT_DOUBLE_EQ(e.heading_rmse_deg, 0.0);
+  ASSERT_TRUE(e.converged_at_s.has_value());
+}
+
+TEST(Metrics, AteIsRootMeanSquareOfPositionErrors) {
+  const auto ref = straight_line(4, 1.0);
+  auto est = ref;
+  // Offsets 3-4-5, 0, 1, 0 m: RMS = sqrt((25 + 0 + 1 + 0) / 4).
+  est[0].pose.x += 3.0;
+  est[0].pose.y += 4.0;
+  est[2].pose.y -= 1.0;
+  const TrajectoryErrors e = compare_trajectories(est, ref);
+  EXPECT_NEAR(e.ate_rmse_m, std::sqrt(26.0 / 4.0), 1e-12);
+  EXPECT_NEAR(e.max_error_m, 5.0, 1e-12);
+}
+
+TEST(Metrics, HeadingErrorIsWrappedAndInDegrees) {
+  std::vector<StampedPose> ref{{1.0, {0, 0, 179.0 * kDeg}}, {2.0, {0, 0, 0.0}}};
+  std::vector<StampedPose> est{{1.0, {0, 0, -179.0 * kDeg}}, {2.0, {0, 0, 4.0 * kDeg}}};
+  // Errors 2 and 4 degrees (the first across the +-pi seam): RMS = sqrt((4 + 16) / 2).
+  const TrajectoryErrors e = compare_trajectories(est, ref);
+  EXPECT_NEAR(e.heading_rmse_deg, std::sqrt(10.0), 1e-9);
+}
+
+TEST(Metrics, MatchesNearestStampWithinTolerance) {
+  const std::vector<StampedPose> ref{{1.00, {1, 0, 0}}, {1.10, {2, 0, 0}}, {1.20, {3, 0, 0}}};
+  EXPECT_DOUBLE_EQ(match_reference(ref, 1.06, 0.05)->pose.x, 2.0);
+  EXPECT_DOUBLE_EQ(match_reference(ref, 1.04, 0.05)->pose.x, 1.0);
+  EXPECT_DOUBLE_EQ(match_reference(ref, 1.23, 0.05)->pose.x, 3.0);
+  EXPECT_FALSE(match_reference(ref, 1.30, 0.05).has_value());
+  EXPECT_FALSE(match_reference(ref, 0.90, 0.05).has_value());
+  EXPECT_FALSE(match_reference({}, 1.0, 0.05).has_value());
+}
+
+TEST(Metrics, UnsortedReferenceIsSortedBeforeMatching) {
+  auto ref = straight_line(20, 0.5);
+  std::swap(ref[3], ref[15]);
+  const TrajectoryErrors e = compare_trajectories(straight_line(20, 0.5), ref);
+  EXPECT_EQ(e.matched, 20U);
+  EXPECT_DOUBLE_EQ(e.ate_rmse_m, 0.0);
+}
+
+TEST(Metrics, UnmatchedEstimatesAreSkippedAndNoMatchGivesNaN) {
+  const auto ref = straight_line(10, 1.0);
+  auto est = ref;
+  est[4].stamp += 0.5;  // no reference within 0.05 s
+  est[4].pose.x += 100.0;
+  EXPECT_EQ(compare_trajectories(est, ref).matched, 9U);
+  EXPECT_DOUBLE_EQ(compare_trajectories(est, ref).ate_rmse_m, 0.0);
+  const TrajectoryErrors none = compare_trajectories(est, {});
+  EXPECT_EQ(none.matched, 0U);
+  EXPECT_TRUE(std::isnan(none.ate_rmse_m));
+  EXPECT_FALSE(none.converged_at_s.has_value());
+}
+
+TEST(Metrics, ConvergedAtIsFirstTimeFromWhichErrorStaysSmall) {
+  const auto ref = straight_line(30, 1.0);  // stamps 100 .. 129
+  auto est = ref;
+  for (std::size_t k = 0; k < 10; ++k) est[k].pose.x += 2.0;  // lost until stamp 109
+  est[14].pose.theta += 15.0 * kDeg;                          // heading glitch at stamp 114
+  est[20].pose.y += 0.49;                                     // still inside 0.5 m
+  MetricOptions options;
+  options.start_stamp = 100.0;
+  const TrajectoryErrors e = compare_trajectories(est, ref, options);
+  ASSERT_TRUE(e.converged_at_s.has_value());
+  EXPECT_DOUBLE_EQ(*e.converged_at_s, 15.0);
+}
+
+TEST(Metrics, NeverConvergedWhenTheLastPoseIsOff) {
+  const auto ref = straight_line(10, 1.0);
+  auto est = ref;
+  est.back().pose.x += 0.6;
+  EXPECT_FALSE(compare_trajectories(est, ref).converged_at_s.has_value());
+}
+
+TEST(Metrics, PercentilesUseNearestRank) {
+  std::vector<double> v;
+  for (int k = 100; k >= 1; --k) v.push_back(k);
+  const Percentiles p = summarize(v);
+  EXPECT_DOUBLE_EQ(p.mean, 50.5);
+  EXPECT_DOUBLE_EQ(p.p50, 50.0);
+  EXPECT_DOUBLE_EQ(p.p99, 99.0);
+  EXPECT_DOUBLE_EQ(p.max, 100.0);
+  const Percentiles one = summarize({7.0});
+  EXPECT_DOUBLE_EQ(one.p50, 7.0);
+  EXPECT_DOUBLE_EQ(one.p99, 7.0);
+  EXPECT_DOUBLE_EQ(summarize({}).max, 0.0);
+}
+
+}  // namespace
+}  // namespace mote::replay

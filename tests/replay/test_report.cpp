@@ -1,0 +1,214 @@
+// report.json (JSON writer validity, keys, null for NaN), map.png rendering and the output folder.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "mote/replay/map_image.hpp"
+#include "mote/replay/report.hpp"
+#include "mote/replay/report_json.hpp"
+
+namespace mote::replay {
+namespace {
+
+// A tiny JSON checker: validates the whole text and collects the top-level object's keys.
+class JsonCheck {
+ public:
+  explicit JsonCheck(std::string text) : s_(std::move(text)) {}
+  bool valid() {
+    skip();
+    if (!value(0)) return false;
+    skip();
+    return pos_ == s_.size();
+  }
+  std::set<std::string> keys;
+
+ private:
+  void skip() {
+    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_])) != 0) ++pos_;
+  }
+  bool eat(char c) {
+    skip();
+    if (pos_ < s_.size() && s_[pos_] == c) return ++pos_, true;
+    return false;
+  }
+  bool literal(std::string_view w) {
+    if (s_.compare(pos_, w.size(), w) != 0) return false;
+    pos_ += w.size();
+    return true;
+  }
+  bool string(std::string* out) {
+    if (!eat('"')) return false;
+    std::string text;
+    while (pos_ < s_.size() && s_[pos_] != '"') {
+      if (static_cast<unsigned char>(s_[pos_]) < 0x20U) return false;
+      if (s_[pos_] == '\\') ++pos_;
+      text += s_[pos_++];
+    }
+    if (out != nullptr) *out = text;
+    return eat('"');
+  }
+  bool number() {
+    const std::size_t start = pos_;
+    while (pos_ < s_.size() &&
+           std::string_view("+-0123456789.eE").find(s_[pos_]) != std::string_view::npos) {
+      ++pos_;
+    }
+    return pos_ > start && (std::isdigit(static_cast<unsigned char>(s_[pos_ - 1])) != 0);
+  }
+  bool members(int depth) {
+    if (eat('}')) return true;
+    do {
+      std::string k;
+      if (!string(&k) || !eat(':') || !value(depth + 1)) return false;
+      if (depth == 0) keys.insert(k);
+    } while (eat(','));
+    return eat('}');
+  }
+  bool items(int depth) {
+    if (eat(']')) return true;
+    do {
+      if (!value(depth + 1)) return false;
+    } while (eat(','));
+    return eat(']');
+  }
+  bool value(int depth) {
+    skip();
+    if (eat('{')) return members(depth);
+    if (eat('[')) return items(depth);
+    if (pos_ < s_.size() && s_[pos_] == '"') return string(nullptr);
+    if (literal("null") || literal("true") || literal("false")) return true;
+    return number();
+  }
+  std::string s_;
+  std::size_t pos_ = 0;
+};
+
+OccupancyGrid small_map() {
+  // 4 x 3 cells of 1 m: bottom row free, middle row occupied except one unknown, top row free.
+  std::vector<CellState> cells(12, CellState::kFree);
+  for (int i = 0; i < 4; ++i) cells[4 + static_cast<std::size_t>(i)] = CellState::kOccupied;
+  cells[5] = CellState::kUnknown;
+  return OccupancyGrid(4, 3, 1.0, Pose2{}, cells);
+}
+
+ReplayResult fake_result(bool with_reference) {
+  ReplayResult r{small_map(), LocalizerConfig{}};
+  r.threads = 2;
+  r.scans = 3;
+  for (int k = 0; k < 2; ++k) {
+    UpdateRecord u;
+    u.ms = {1.0, 4.0 + k, 0.5, 2.0, 0.5, 8.0 + k};
+    u.particles = 1000;
+    u.weighed = 1000;
+    u.beams = 60;
+    r.updates.push_back(u);
+    r.trajectory.push_back({static_cast<double>(k), {0.5 + k, 0.5, 0.0}});
+  }
+  r.outcomes[0] = 2;
+  r.outcomes[2] = 1;
+  if (with_reference) {
+    TrajectoryErrors e;
+    e.ate_rmse_m = std::numeric_limits<double>::quiet_NaN();
+    e.heading_rmse_deg = 1.5;
+    r.errors = e;
+  }
+  r.reader.first_error = "log.clf: line 3: bad \"number\"\n";
+  return r;
+}
+
+TEST(JsonWriter, WritesValidNestedJsonWithEscapesAndNullForNonFinite) {
+  std::ostringstream out;
+  JsonWriter json(out);
+  json.begin_object().member("a", 1).member("s", "q\"\\\n\x01");
+  json.member("nan", std::numeric_limits<double>::quiet_NaN());
+  json.member("inf", std::numeric_limits<double>::infinity());
+  json.key("list").begin_array().value(0.25).value(true).null().begin_object().end_object();
+  json.end_array().key("empty").begin_array().end_array().end_object();
+  JsonCheck check(out.str());
+  ASSERT_TRUE(check.valid()) << out.str();
+  EXPECT_EQ(check.keys, (std::set<std::string>{"a", "s", "nan", "inf", "list", "empty"}));
+  EXPECT_NE(out.str().find("\"nan\": null"), std::string::npos);
+  EXPECT_NE(out.str().find("\"inf\": null"), std::string::npos);
+  EXPECT_NE(out.str().find("\\u0001"), std::string::npos);
+  EXPECT_EQ(out.str().find("nan,"), std::string::npos);
+}
+
+TEST(JsonWriter, DoublesRoundTrip) {
+  std::ostringstream out;
+  JsonWriter(out).begin_array().value(0.1).value(-12345.678901234).value(1e-300).end_array();
+  JsonCheck check(out.str());
+  EXPECT_TRUE(check.valid());
+  EXPECT_NE(out.str().find("0.1"), std::string::npos);
+  EXPECT_NE(out.str().find("-12345.678901234"), std::string::npos);
+}
+
+TEST(Report, HasTheRequiredKeysAndFigures) {
+  std::ostringstream out;
+  write_report_json(out, fake_result(true));
+  JsonCheck check(out.str());
+  ASSERT_TRUE(check.valid()) << out.str();
+  for (const char* key : {"updates", "scans", "threads", "model", "particles_mean", "update_ms",
+                          "phase_ms", "particle_beams_per_s", "outcomes", "reader", "ate_rmse_m",
+                          "heading_rmse_deg", "converged_at_s"}) {
+    EXPECT_TRUE(check.keys.contains(key)) << key;
+  }
+  EXPECT_NE(out.str().find("\"ate_rmse_m\": null"), std::string::npos);
+  EXPECT_NE(out.str().find("\"converged_at_s\": null"), std::string::npos);
+  const RunFigures f = run_figures(fake_result(false));
+  EXPECT_DOUBLE_EQ(f.update_ms.mean, 8.5);
+  EXPECT_DOUBLE_EQ(f.update_ms.max, 9.0);
+  EXPECT_DOUBLE_EQ(f.phase_mean_ms.sensor, 4.5);
+  // 2 updates x 1000 particles x 60 beams over 9 ms of sensor phase.
+  EXPECT_NEAR(f.particle_beams_per_s, 120000.0 / 9e-3, 1e-3);
+}
+
+TEST(Report, WithoutReferenceHasNoAccuracyKeys) {
+  std::ostringstream out;
+  write_report_json(out, fake_result(false));
+  JsonCheck check(out.str());
+  ASSERT_TRUE(check.valid());
+  EXPECT_FALSE(check.keys.contains("ate_rmse_m"));
+}
+
+TEST(MapImage, CellsAreColouredAndTheEstimateIsDrawn) {
+  const OccupancyGrid map = small_map();
+  MapRenderOptions options;
+  options.target_pixels = 40;  // scale 10 for a 4-cell extent
+  options.max_scale = 10;
+  const RgbImage plain = render_map(map, {}, options);
+  ASSERT_EQ(plain.width, 40);
+  ASSERT_EQ(plain.height, 30);
+  RgbImage img = plain;
+  EXPECT_EQ(img.at(35, 25)[0], 255);  // bottom row: free
+  EXPECT_EQ(img.at(35, 15)[0], 0);    // middle row: occupied
+  EXPECT_EQ(img.at(15, 15)[0], 160);  // cell (1, 1): unknown
+  const std::vector<StampedPose> path{{0.0, {0.5, 2.5, 0.0}}, {1.0, {3.5, 2.5, 0.0}}};
+  RgbImage drawn = render_map(map, {{}, path, {}}, options);
+  const std::uint8_t* mid = drawn.at(20, 5);  // the path runs along the top row's centre
+  EXPECT_GT(mid[0], 200);
+  EXPECT_LT(mid[1], 50);
+}
+
+TEST(Report, OutputFolderHoldsTheThreeFiles) {
+  const auto dir = std::filesystem::temp_directory_path() / "mote_test_report_out" / "nested";
+  std::filesystem::remove_all(dir.parent_path());
+  write_replay_outputs(dir, fake_result(true));
+  for (const char* name : {"report.json", "trajectory.tum", "map.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+  }
+  std::ifstream png(dir / "map.png", std::ios::binary);
+  std::string magic(8, '\0');
+  png.read(magic.data(), 8);
+  EXPECT_EQ(magic, std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(read_tum(dir / "trajectory.tum").size(), 2U);
+  std::filesystem::remove_all(dir.parent_path());
+}
+
+}  // namespace
+}  // namespace mote::replay
