@@ -80,11 +80,14 @@ NormalizeResult normalize(const ParticleView& p, std::size_t grain) {
   }
   const double total = sum_exp(p, max_logw, grain, 1);  // >= 1: the max contributes exp(0)
   const double log_total = static_cast<double>(max_logw) + std::log(total);
-  const auto shift = static_cast<float>(log_total);
+  // Subtract in two steps: v - max is exact for nearby values (Sterbenz), and log(total) is a
+  // small number with full float precision; rounding log_total itself to float would scale
+  // every weight by up to 1 +- 2^-24 |log_total| (3e-5 at log-weights near 1000).
+  const auto log_sum = static_cast<float>(std::log(total));
   par::for_each_chunk(p.size(), grain, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const float v = p.logw[i];
-      p.logw[i] = v == v ? v - shift : kNegInf;
+      p.logw[i] = v == v ? (v - max_logw) - log_sum : kNegInf;
     }
   });
   r.status = WeightStatus::kOk;

@@ -1,0 +1,86 @@
+#include "mote/engine/kld.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mote/core/error.hpp"
+#include "mote/engine/executor.hpp"
+
+namespace mote {
+namespace {
+
+// Table values of the standard normal distribution.
+TEST(NormalQuantile, MatchesTables) {
+  EXPECT_NEAR(standard_normal_quantile(0.99), 2.326347874, 1e-9);
+  EXPECT_NEAR(standard_normal_quantile(0.975), 1.959963985, 1e-9);
+  EXPECT_NEAR(standard_normal_quantile(0.5), 0.0, 1e-12);
+  EXPECT_NEAR(standard_normal_quantile(0.01), -2.326347874, 1e-9);
+  EXPECT_NEAR(standard_normal_quantile(1e-6), -4.753424309, 1e-8);
+  EXPECT_THROW((void)standard_normal_quantile(1.0), ConfigError);
+}
+
+// Fox 2003, eq. 13, evaluated here with z = 2.326347874 (the 0.99 quantile from a table).
+double fox(double k, double eps, double z) {
+  const double a = 2.0 / (9.0 * (k - 1));
+  return std::ceil((k - 1) / (2 * eps) * std::pow(1 - a + std::sqrt(a) * z, 3));
+}
+
+TEST(KldSampleCount, MatchesTheFormulaTable) {
+  KldConfig config;
+  config.min_particles = 0;
+  config.max_particles = 1000000000;
+  for (const std::size_t k : {10UL, 100UL, 1000UL}) {
+    const double expected = fox(static_cast<double>(k), 0.05, 2.326347874);
+    EXPECT_EQ(kld_sample_count(k, config), static_cast<std::size_t>(expected)) << k;
+  }
+  EXPECT_EQ(kld_sample_count(10, config), 217U);  // by hand: 90 * 1.340862^3 = 216.97
+  config.use_z = true;
+  config.z = 3.0;
+  EXPECT_EQ(kld_sample_count(100, config), static_cast<std::size_t>(fox(100, 0.05, 3.0)));
+}
+
+TEST(KldSampleCount, IsBoundedByMinAndMax) {
+  const KldConfig config;  // 500 .. 5000
+  EXPECT_EQ(kld_sample_count(1, config), 500U);
+  EXPECT_EQ(kld_sample_count(3, config), 500U);
+  EXPECT_EQ(kld_sample_count(100000, config), 5000U);
+}
+
+TEST(KldBins, CountsDistinctBinsWithThetaWrapAndClamping) {
+  KldBins bins({0.0, 0.0, 10.0, 10.0}, 0.5, 0.5, 10.0 * std::numbers::pi / 180);
+  ParticleStore store(6);
+  const ParticleView p = store.view();
+  p.set_pose(0, {1.1, 1.1, 0.0});
+  p.set_pose(1, {1.4, 1.2, 0.05});               // same bin as 0
+  p.set_pose(2, {1.6, 1.1, 0.0});                // next x bin
+  p.set_pose(3, {1.1, 1.1, std::numbers::pi});   // last theta bin
+  p.set_pose(4, {1.1, 1.1, -std::numbers::pi});  // wraps to +pi: same as 3
+  p.set_pose(5, {-50.0, 1.1, 0.0});              // outside: clamped to x bin 0
+  EXPECT_EQ(bins.count(p), 4U);
+  EXPECT_EQ(bins.bin_of(p.x[3], p.y[3], p.theta[3]), bins.bin_of(p.x[4], p.y[4], p.theta[4]));
+  EXPECT_EQ(bins.ntheta(), 36U);
+}
+
+TEST(KldBins, CountIsIndependentOfThreads) {
+  KldBins bins({-20.0, -20.0, 20.0, 20.0}, 0.5, 0.5, 0.2);
+  ParticleStore store(50000);
+  const ParticleView p = store.view();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.set_pose(i, {std::fmod(0.37 * double(i), 30.0) - 15, std::fmod(0.11 * double(i), 7.0),
+                   0.001 * double(i)});
+  }
+  std::size_t serial = 0;
+  std::size_t parallel = 0;
+  Executor(1)([&] { serial = bins.count(p, 1 << 20); });
+  const Executor ex(4);
+  ex([&] { parallel = bins.count(p, 64); });
+  EXPECT_EQ(parallel, serial);
+  EXPECT_GT(serial, 1000U);
+  KldConfig config;
+  config.max_particles = 100000;
+  EXPECT_EQ(kld_sample_count(p, bins, config), kld_sample_count(serial, config));
+}
+
+}  // namespace
+}  // namespace mote
