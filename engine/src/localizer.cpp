@@ -42,7 +42,8 @@ void Localizer::Impl::start_fresh() {
   degenerate = false;
   updates_since_resample = 0;
   recovery.reset();
-  stats = UpdateStats{.particles = store.size()};
+  stats = UpdateStats{};
+  stats.particles = store.size();
   initialized = true;
   executor.run([&] { update_estimate(); });
 }
@@ -69,7 +70,9 @@ void Localizer::initialize_global() {
 bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   Impl& s = *impl_;
   const auto start = Clock::now();
-  s.stats = UpdateStats{.step = s.step, .particles = s.store.size()};
+  s.stats = UpdateStats{};
+  s.stats.step = s.step;
+  s.stats.particles = s.store.size();
   if (!s.initialized) throw Error("Localizer::update called before initialize()");
   if (!is_finite(odometry))
     return s.reject(UpdateOutcome::kRejectedOdometry, "odometry pose is not finite");

@@ -2,6 +2,7 @@
 // The Localizer's state and the steps of one update (private to mote::engine).
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <variant>
 
@@ -40,7 +41,7 @@ struct Localizer::Impl {
   OccupancyGrid map;
   Executor executor;
   MotionVariant motion;
-  SensorVariant sensor;
+  std::unique_ptr<SensorVariant> sensor;  // built inside the executor's arena
   BeamSelection selection;
   KldConfig kld;
   KldBins bins;

@@ -66,7 +66,7 @@ Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
       map(grid),
       executor(config.threads),
       motion(make_motion(config)),
-      sensor(executor([&] { return make_sensor(map, config); })),
+
       selection{.max_beams = config.max_beams,
                 .range_min = config.laser_min_range,
                 .range_max = config.laser_max_range,
@@ -74,6 +74,8 @@ Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
       kld(kld_of(config)),
       bins(map.bounds(), config.kld_bin_xy, config.kld_bin_xy, config.kld_bin_theta),
       recovery({config.recovery_alpha_slow, config.recovery_alpha_fast}) {
+  // The distance field / Embree scene are built in parallel on the Localizer's own threads.
+  executor.run([&] { sensor = std::make_unique<SensorVariant>(make_sensor(map, config)); });
   store.reserve(static_cast<std::size_t>(config.max_particles));
 }
 
@@ -111,7 +113,7 @@ void Localizer::Impl::weigh() {
         if constexpr (requires { model.prepare(beams); }) model.prepare(beams);
         weigh_scan(model, beams, store.view(), config.grain);
       },
-      sensor);
+      *sensor);
 }
 
 void Localizer::Impl::normalize() {

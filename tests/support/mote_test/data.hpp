@@ -22,10 +22,10 @@ inline std::filesystem::path project_test_data() { return MOTE_TEST_PROJECT_DATA
 
 }  // namespace mote::test
 
-/// Declares `path` as data_dir()/rel and skips the test when that file is absent.
-#define MOTE_REQUIRE_DATA(path, rel)                                                   \
-  const std::filesystem::path path = ::mote::test::data_dir() / (rel);                 \
-  if (!std::filesystem::exists(path)) {                                                \
-    GTEST_SKIP() << "recorded data not found: " << path.string()                       \
+/// Declares `var` as data_dir()/rel and skips the test when that file is absent.
+#define MOTE_REQUIRE_DATA(var, rel)                                                    \
+  const ::std::filesystem::path var = ::mote::test::data_dir() / (rel);                \
+  if (!::std::filesystem::exists(var)) {                                               \
+    GTEST_SKIP() << "recorded data not found: " << var.string()                        \
                  << " (set MOTE_DATA_DIR to the shared data folder to run this test)"; \
   }

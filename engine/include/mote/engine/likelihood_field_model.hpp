@@ -19,10 +19,10 @@ namespace mote {
 
 /// Likelihood-field parameters (amcl names where they exist).
 struct LikelihoodFieldParams {
-  MixtureParams mixture;       ///< z_hit, z_rand, sigma_hit are used
-  double max_distance = 2.0;   ///< m: laser_likelihood_max_dist, the distance field's clamp
+  MixtureParams mixture;      ///< z_hit, z_rand, sigma_hit are used
+  double max_distance = 2.0;  ///< m: laser_likelihood_max_dist, the distance field's clamp
   LikelihoodCombination combination = LikelihoodCombination::kProduct;
-  double tempering = 1.0;      ///< tau: log-likelihoods are multiplied by it
+  double tempering = 1.0;  ///< tau: log-likelihoods are multiplied by it
 };
 
 /// Weighs particles by the likelihood field. In kProduct mode the table holds

@@ -1,0 +1,228 @@
+// The whole filter on simulated scans over the recorded Intel map: tracking, global
+// localization, recovery from a kidnapping, and bit-identical results across thread counts.
+#include "mote/engine/localizer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <numbers>
+
+#include "mote/core/error.hpp"
+#include "mote/maps/map_loader.hpp"
+#include "mote_test/data.hpp"
+#include "mote_test/scan_simulator.hpp"
+
+namespace mote {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// The first reference pose of the Intel log: a free spot in the map.
+Pose2 intel_start(const std::filesystem::path& tum) {
+  std::ifstream in(tum);
+  double stamp = 0, x = 0, y = 0, z = 0, qx = 0, qy = 0, qz = 0, qw = 1;
+  in >> stamp >> x >> y >> z >> qx >> qy >> qz >> qw;
+  return {x, y, 2.0 * std::atan2(qz, qw)};
+}
+
+// A robot driving through the map, its noisy odometry and its scans.
+struct Drive {
+  Drive(const OccupancyGrid& map, Pose2 start, std::uint64_t seed)
+      : sim(map, seed), truth(start), odometry{1.0, -2.0, 0.3} {}
+
+  // Moves the robot and returns the odometry pose; the odometry increment is the true one
+  // with 1 cm and 0.5 degree of noise.
+  Pose2 advance() {
+    const Pose2 next = sim.drive(truth);
+    Pose2 step = between(truth, next);
+    step.x += 0.01 * sim.normal();
+    step.y += 0.01 * sim.normal();
+    step.theta += 0.5 * kDeg * sim.normal();
+    truth = next;
+    odometry = compose(odometry, step);
+    return odometry;
+  }
+
+  test::ScanSimulator sim;
+  Pose2 truth;
+  Pose2 odometry;
+};
+
+LocalizerConfig tracking_config(int particles) {
+  LocalizerConfig c;
+  c.min_particles = c.max_particles = particles;
+  c.alpha1 = c.alpha2 = c.alpha3 = c.alpha4 = 0.05;
+  c.update_min_d = 0.0;
+  c.update_min_a = 0.0;
+  c.sigma_hit = 0.1;
+  return c;
+}
+
+Eigen::Matrix3d diagonal_covariance(double sxy, double stheta) {
+  return Eigen::Vector3d(sxy * sxy, sxy * sxy, stheta * stheta).asDiagonal();
+}
+
+class LocalizerOnIntel : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+    MOTE_REQUIRE_DATA(tum, "intel/intel.gt.tum");
+    map_ = std::make_unique<OccupancyGrid>(load_map(yaml));
+    start_ = intel_start(tum);
+  }
+
+  // Tracks from the true start for `updates` steps; returns the RMS position and heading
+  // errors after a warm-up of 5 updates.
+  std::pair<double, double> track(const LocalizerConfig& config, int updates) {
+    Localizer filter(*map_, config);
+    filter.initialize(start_, diagonal_covariance(0.05, 2 * kDeg));
+    Drive drive(*map_, start_, 7);
+    double sum_xy = 0.0;
+    double sum_theta = 0.0;
+    EXPECT_TRUE(filter.update(drive.odometry, drive.sim.scan_at(drive.truth)));
+    for (int k = 0; k < updates; ++k) {
+      const Pose2 odom = drive.advance();
+      EXPECT_TRUE(filter.update(odom, drive.sim.scan_at(drive.truth)));
+      if (k < 5) continue;
+      const Pose2 est = filter.estimate().best().mean;
+      sum_xy += std::pow(test::position_error(est, drive.truth), 2);
+      sum_theta += std::pow(test::heading_error(est, drive.truth), 2);
+    }
+    return {std::sqrt(sum_xy / (updates - 5)), std::sqrt(sum_theta / (updates - 5))};
+  }
+
+  std::unique_ptr<OccupancyGrid> map_;
+  Pose2 start_;
+};
+
+TEST_F(LocalizerOnIntel, LikelihoodFieldTracksWithin5cmAnd1Degree) {
+  const auto [xy, theta] = track(tracking_config(5000), 60);
+  EXPECT_LT(xy, 0.05);
+  EXPECT_LT(theta, 1.0 * kDeg);
+}
+
+TEST_F(LocalizerOnIntel, BeamModelTracksWithin5cmAnd1Degree) {
+  LocalizerConfig config = tracking_config(2000);
+  config.laser_model_type = LaserModel::kBeam;
+  const auto [xy, theta] = track(config, 40);
+  EXPECT_LT(xy, 0.05);
+  EXPECT_LT(theta, 1.0 * kDeg);
+}
+
+TEST_F(LocalizerOnIntel, GlobalLocalizationConverges) {
+  LocalizerConfig config = tracking_config(0);
+  config.min_particles = 2000;
+  config.max_particles = 100000;
+  Localizer filter(*map_, config);
+  filter.initialize_global();
+  EXPECT_EQ(filter.particles().size(), 100000U);
+  Drive drive(*map_, start_, 11);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 40; ++k) filter.update(drive.advance(), drive.sim.scan_at(drive.truth));
+  const Pose2 est = filter.estimate().best().mean;
+  EXPECT_LT(test::position_error(est, drive.truth), 0.2);
+  EXPECT_LT(test::heading_error(est, drive.truth), 5 * kDeg);
+  EXPECT_LT(filter.particles().size(), 20000U) << "KLD should shrink a converged set";
+}
+
+TEST_F(LocalizerOnIntel, RecoversFromAKidnapping) {
+  LocalizerConfig config = tracking_config(0);
+  config.min_particles = 5000;
+  config.max_particles = 50000;
+  config.recovery_alpha_slow = 0.001;
+  config.recovery_alpha_fast = 0.1;
+  Localizer filter(*map_, config);
+  filter.initialize(start_, diagonal_covariance(0.05, 2 * kDeg));
+  Drive drive(*map_, start_, 13);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 10; ++k) filter.update(drive.advance(), drive.sim.scan_at(drive.truth));
+  ASSERT_LT(test::position_error(filter.estimate().best().mean, drive.truth), 0.1);
+
+  // Carry the robot 20 updates further along its way without telling the odometry.
+  Drive elsewhere(*map_, drive.truth, 17);
+  for (int k = 0; k < 20; ++k) elsewhere.advance();
+  drive.truth = elsewhere.truth;
+  ASSERT_GT(test::position_error(filter.estimate().best().mean, drive.truth), 2.0);
+
+  std::size_t injected = 0;
+  for (int k = 0; k < 60; ++k) {
+    filter.update(drive.advance(), drive.sim.scan_at(drive.truth));
+    injected += filter.last_update().injected;
+  }
+  EXPECT_GT(injected, 0U);
+  EXPECT_LT(test::position_error(filter.estimate().best().mean, drive.truth), 0.2);
+}
+
+// Runs 100 updates and returns the particle columns, bytes and all.
+std::vector<float> run_filter(const OccupancyGrid& map, Pose2 start, int threads, std::size_t grain,
+                              LaserModel model) {
+  LocalizerConfig config = tracking_config(0);
+  config.min_particles = 500;
+  config.max_particles = model == LaserModel::kBeam ? 1000 : 8000;
+  config.threads = threads;
+  config.grain = grain;
+  config.laser_model_type = model;
+  config.recovery_alpha_slow = 0.001;
+  config.recovery_alpha_fast = 0.1;
+  Localizer filter(map, config);
+  filter.initialize(start, diagonal_covariance(0.3, 10 * kDeg));
+  Drive drive(map, start, 5);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 100; ++k) filter.update(drive.advance(), drive.sim.scan_at(drive.truth));
+  const ConstParticleView p = filter.particles();
+  std::vector<float> all;
+  for (const float* column : {p.x, p.y, p.theta, p.logw})
+    all.insert(all.end(), column, column + p.size());
+  const Pose2 m = filter.estimate().best().mean;
+  all.insert(all.end(),
+             {static_cast<float>(m.x), static_cast<float>(m.y), static_cast<float>(m.theta)});
+  return all;
+}
+
+bool bit_identical(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+TEST_F(LocalizerOnIntel, BitIdenticalForAnyThreadCountAndGrain) {
+  for (LaserModel model : {LaserModel::kLikelihoodField, LaserModel::kBeam}) {
+    const std::vector<float> one = run_filter(*map_, start_, 1, 4096, model);
+    EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 4096, model)));
+    EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 256, model)));
+  }
+}
+
+TEST_F(LocalizerOnIntel, GateSkipsUpdatesWithoutMotion) {
+  LocalizerConfig config = tracking_config(500);
+  config.update_min_d = 0.25;
+  config.update_min_a = 0.2;
+  Localizer filter(*map_, config);
+  filter.initialize(start_, diagonal_covariance(0.05, 2 * kDeg));
+  test::ScanSimulator sim(*map_, 3);
+  const LaserScan scan = sim.scan_at(start_);
+  EXPECT_TRUE(filter.update({0, 0, 0}, scan));
+  EXPECT_EQ(filter.last_update().outcome, UpdateOutcome::kInitialized);
+  EXPECT_FALSE(filter.update({0.1, 0, 0.1}, scan));
+  EXPECT_EQ(filter.last_update().outcome, UpdateOutcome::kNotMoved);
+  EXPECT_TRUE(filter.update({0.3, 0, 0}, scan));
+  EXPECT_EQ(filter.last_update().outcome, UpdateOutcome::kUpdated);
+}
+
+TEST_F(LocalizerOnIntel, BadInputIsRejectedWithoutTouchingTheParticles) {
+  Localizer filter(*map_, tracking_config(500));
+  test::ScanSimulator sim(*map_, 3);
+  EXPECT_THROW(filter.update({0, 0, 0}, sim.scan_at(start_)), Error);
+  filter.initialize(start_, diagonal_covariance(0.05, 2 * kDeg));
+  const Pose2 before = filter.estimate().overall.mean;
+
+  EXPECT_FALSE(filter.update({std::nan(""), 0, 0}, sim.scan_at(start_)));
+  EXPECT_EQ(filter.last_update().outcome, UpdateOutcome::kRejectedOdometry);
+  LaserScan invalid = sim.scan_at(start_);
+  for (float& r : invalid.ranges) r = -1.0F;
+  EXPECT_FALSE(filter.update({0, 0, 0}, invalid));
+  EXPECT_EQ(filter.last_update().outcome, UpdateOutcome::kRejectedScan);
+  EXPECT_EQ(filter.estimate().overall.mean, before);
+}
+
+}  // namespace
+}  // namespace mote
