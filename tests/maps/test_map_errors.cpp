@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -151,6 +152,36 @@ TEST_F(MapErrors, PngFiles) {
   for (int k = 0; k < 4; ++k) huge[29 + k] = static_cast<char>(crc >> (24 - 8 * k));
   write("map.png", huge);
   expect_error(y, img, "header claims 60000 x 60000 pixels");
+}
+
+/// Every proper prefix of a valid image must be rejected with InputError, and random byte
+/// flips must give either an image or InputError: never a crash or another exception.
+/// Prefixes of at least `complete` bytes may be valid (a plain PGM cut inside its last number).
+void check_corruptions(const fs::path& file, const std::string& valid, std::size_t complete) {
+  for (std::size_t n = 0; n < complete; ++n) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << valid.substr(0, n);
+    EXPECT_THROW((void)read_map_image(file), InputError) << "prefix of " << n << " bytes";
+  }
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<std::size_t> at(0, valid.size() - 1);
+  std::uniform_int_distribution<int> byte(0, 255);
+  for (int trial = 0; trial < 120; ++trial) {
+    std::string bad = valid;
+    bad[at(rng)] = static_cast<char>(byte(rng));
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bad;
+    try {
+      (void)read_map_image(file);
+    } catch (const InputError&) {
+    }
+  }
+}
+
+TEST_F(MapErrors, TruncatedOrCorruptedImages) {
+  const std::string pgm = "P5\n# c\n4 3\n255\n"s + std::string(12, '\x7f');
+  check_corruptions(dir_ / "c.pgm", pgm, pgm.size());
+  check_corruptions(dir_ / "c.pgm", "P2\n4 1\n65535\n1 22 333 4444\n"s, 23);
+  const std::string png = small_png();
+  check_corruptions(dir_ / "c.png", png, png.size());
 }
 
 }  // namespace
