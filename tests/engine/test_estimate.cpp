@@ -1,0 +1,90 @@
+#include "mote/engine/estimate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "mote/engine/executor.hpp"
+
+namespace mote {
+namespace {
+
+void set(const ParticleView& p, std::size_t i, const Pose2& pose, double w) {
+  p.set_pose(i, pose);
+  p.logw[i] = static_cast<float>(std::log(w));
+}
+
+TEST(Estimate, WeightedMeanAndCovariance) {
+  ParticleStore store(2);
+  set(store.view(), 0, {0.0, 0.0, 0.1}, 0.25);
+  set(store.view(), 1, {4.0, 2.0, 0.3}, 0.75);
+  const PoseEstimate e = estimate(store.view());
+  EXPECT_NEAR(e.mean.x, 3.0, 1e-6);
+  EXPECT_NEAR(e.mean.y, 1.5, 1e-6);
+  // Var of a two-point distribution: w0 w1 d^2.
+  EXPECT_NEAR(e.covariance(0, 0), 0.1875 * 16, 1e-5);
+  EXPECT_NEAR(e.covariance(0, 1), 0.1875 * 8, 1e-5);
+  EXPECT_NEAR(e.covariance(1, 1), 0.1875 * 4, 1e-5);
+  EXPECT_EQ(e.count, 2U);
+}
+
+TEST(Estimate, HeadingIsACircularMeanWithWrappedResiduals) {
+  ParticleStore store(2);
+  set(store.view(), 0, {0.0, 0.0, 3.1}, 0.5);
+  set(store.view(), 1, {0.0, 0.0, -3.1}, 0.5);
+  const PoseEstimate e = estimate(store.view());
+  EXPECT_NEAR(std::abs(e.mean.theta), std::numbers::pi, 1e-6);  // not 0
+  const double d = std::numbers::pi - 3.1;
+  EXPECT_NEAR(e.covariance(2, 2), d * d, 1e-6);
+}
+
+TEST(Estimate, IsIndependentOfThreads) {
+  ParticleStore store(50001);
+  const ParticleView p = store.view();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    set(p, i, {std::sin(0.1 * double(i)), std::cos(0.3 * double(i)), 0.001 * double(i)},
+        1.0 + 0.5 * std::sin(double(i)));
+  }
+  PoseEstimate serial;
+  PoseEstimate parallel;
+  Executor(1)([&] { serial = estimate(p, 256); });
+  const Executor ex(4);
+  ex([&] { parallel = estimate(p, 256); });
+  EXPECT_EQ(serial.mean, parallel.mean);
+  EXPECT_EQ(serial.covariance, parallel.covariance);
+}
+
+TEST(Cluster, SeparatesBlobsAndPicksTheHeaviest) {
+  ParticleStore store(200);
+  const ParticleView p = store.view();
+  for (std::size_t i = 0; i < 200; ++i) {
+    const bool far = i % 2 == 1;
+    const double jitter = 0.01 * static_cast<double>(i % 10);
+    set(p, i, {far ? 10.0 + jitter : jitter, 1.0, 0.2}, far ? 0.7 : 0.3);
+  }
+  const std::vector<PoseEstimate> clusters = cluster(p);
+  ASSERT_EQ(clusters.size(), 2U);
+  EXPECT_NEAR(clusters[0].weight, 0.3, 1e-6);  // ordered by first particle
+  EXPECT_NEAR(clusters[1].weight, 0.7, 1e-6);
+  const PoseEstimate* best = best_cluster(clusters);
+  ASSERT_NE(best, nullptr);
+  EXPECT_NEAR(best->mean.x, 10.05, 1e-5);  // odd i: jitter 0.01, 0.03, ..., 0.09
+  EXPECT_EQ(best->count, 100U);
+  EXPECT_EQ(best_cluster({}), nullptr);
+}
+
+TEST(Cluster, ConnectsAcrossTheThetaWrapAndHonoursConnectivity) {
+  ParticleStore store(3);
+  const ParticleView p = store.view();
+  set(p, 0, {1.0, 1.0, std::numbers::pi - 0.01}, 1.0);
+  set(p, 1, {1.0, 1.0, -std::numbers::pi + 0.01}, 1.0);  // neighbouring bin across the wrap
+  set(p, 2, {1.0, 1.0, 0.0}, 1.0);                       // same place, opposite heading
+  EXPECT_EQ(cluster(p).size(), 2U);                      // 26-connectivity
+  ClusterConfig xy;
+  xy.connectivity = Connectivity::k8;
+  EXPECT_EQ(cluster(p, xy).size(), 1U);  // headings ignored
+}
+
+}  // namespace
+}  // namespace mote
