@@ -122,7 +122,11 @@ void Localizer::Impl::normalize() {
   const NormalizeResult result = mote::normalize(store.view(), config.grain);
   degenerate = !result.ok();
   stats.effective_sample_size = result.effective_sample_size;
-  recovery.update(result.log_total);
+  // Augmented MCL averages the likelihood per beam (the geometric mean over the scan's beams):
+  // a 60-beam likelihood swings by e^5 between ordinary scans, which would make
+  // 1 - w_fast / w_slow inject particles on every update. Per beam, only a real drop in how
+  // well the map explains the scan moves the ratio.
+  recovery.update(result.log_total / static_cast<double>(std::max<std::size_t>(beams.size(), 1)));
   stats.log_w_slow = recovery.log_w_slow();
   stats.log_w_fast = recovery.log_w_fast();
   if (degenerate) {

@@ -44,6 +44,12 @@ struct Drive {
     return odometry;
   }
 
+  // Moves the robot one step and feeds the filter its odometry and the scan taken there.
+  bool feed(Localizer& filter) {
+    const Pose2 odom = advance();
+    return filter.update(odom, sim.scan_at(truth));
+  }
+
   test::ScanSimulator sim;
   Pose2 truth;
   Pose2 odometry;
@@ -82,8 +88,7 @@ class LocalizerOnIntel : public ::testing::Test {
     double sum_theta = 0.0;
     EXPECT_TRUE(filter.update(drive.odometry, drive.sim.scan_at(drive.truth)));
     for (int k = 0; k < updates; ++k) {
-      const Pose2 odom = drive.advance();
-      EXPECT_TRUE(filter.update(odom, drive.sim.scan_at(drive.truth)));
+      EXPECT_TRUE(drive.feed(filter));
       if (k < 5) continue;
       const Pose2 est = filter.estimate().best().mean;
       sum_xy += std::pow(test::position_error(est, drive.truth), 2);
@@ -119,7 +124,7 @@ TEST_F(LocalizerOnIntel, GlobalLocalizationConverges) {
   EXPECT_EQ(filter.particles().size(), 100000U);
   Drive drive(*map_, start_, 11);
   filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
-  for (int k = 0; k < 40; ++k) filter.update(drive.advance(), drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 40; ++k) drive.feed(filter);
   const Pose2 est = filter.estimate().best().mean;
   EXPECT_LT(test::position_error(est, drive.truth), 0.2);
   EXPECT_LT(test::heading_error(est, drive.truth), 5 * kDeg);
@@ -136,7 +141,7 @@ TEST_F(LocalizerOnIntel, RecoversFromAKidnapping) {
   filter.initialize(start_, diagonal_covariance(0.05, 2 * kDeg));
   Drive drive(*map_, start_, 13);
   filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
-  for (int k = 0; k < 10; ++k) filter.update(drive.advance(), drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 10; ++k) drive.feed(filter);
   ASSERT_LT(test::position_error(filter.estimate().best().mean, drive.truth), 0.1);
 
   // Carry the robot 20 updates further along its way without telling the odometry.
@@ -147,7 +152,7 @@ TEST_F(LocalizerOnIntel, RecoversFromAKidnapping) {
 
   std::size_t injected = 0;
   for (int k = 0; k < 60; ++k) {
-    filter.update(drive.advance(), drive.sim.scan_at(drive.truth));
+    drive.feed(filter);
     injected += filter.last_update().injected;
   }
   EXPECT_GT(injected, 0U);
@@ -169,7 +174,7 @@ std::vector<float> run_filter(const OccupancyGrid& map, Pose2 start, int threads
   filter.initialize(start, diagonal_covariance(0.3, 10 * kDeg));
   Drive drive(map, start, 5);
   filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
-  for (int k = 0; k < 100; ++k) filter.update(drive.advance(), drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 100; ++k) drive.feed(filter);
   const ConstParticleView p = filter.particles();
   std::vector<float> all;
   for (const float* column : {p.x, p.y, p.theta, p.logw})
