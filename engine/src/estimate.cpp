@@ -10,6 +10,10 @@
 namespace mote {
 namespace {
 
+// Moments are summed over a fixed block size, not the caller's grain, so the reduction tree
+// (and every rounding) is the same for any grain and any thread count.
+constexpr std::size_t kSumBlock = 2048;
+
 float max_log_weight(const ConstParticleView& p, std::size_t grain) {
   constexpr float kNegInf = -std::numeric_limits<float>::infinity();
   return par::reduce(
@@ -35,7 +39,7 @@ PoseEstimate estimate(const ConstParticleView& p, std::size_t grain) {
   const float max_logw = max_log_weight(p, grain);
   if (!std::isfinite(max_logw)) return out;
   const detail::FirstMoments first = par::reduce(
-      p.size(), grain, detail::FirstMoments{},
+      p.size(), kSumBlock, detail::FirstMoments{},
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
         detail::FirstMoments m;
@@ -47,7 +51,7 @@ PoseEstimate estimate(const ConstParticleView& p, std::size_t grain) {
       /*join=*/[](const detail::FirstMoments& a, const detail::FirstMoments& b) { return a + b; });
   out.mean = first.mean();
   const detail::SecondMoments second = par::reduce(
-      p.size(), grain, detail::SecondMoments{},
+      p.size(), kSumBlock, detail::SecondMoments{},
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
         detail::SecondMoments m;

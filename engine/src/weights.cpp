@@ -13,6 +13,10 @@ namespace {
 
 constexpr float kNegInf = -std::numeric_limits<float>::infinity();
 
+// Floating-point sums use this fixed block size whatever the caller's grain, so the reduction
+// tree, and with it every rounding, is the same for any grain as well as any thread count.
+constexpr std::size_t kSumBlock = 2048;
+
 // Sum of f(i) over [begin, end) in 16 fixed double lanes (lane = i mod 16, then lanes added in
 // order): the grouping depends only on the indices, so vector and scalar code agree, and the
 // lane loop vectorizes where a single accumulator could not.
@@ -45,10 +49,10 @@ float max_log_weight(const ConstParticleView& p, std::size_t grain) {
       /*join=*/[](float a, float b) { return std::max(a, b); });
 }
 
-double sum_exp(const ConstParticleView& p, float shift, std::size_t grain, int power) {
+double sum_exp(const ConstParticleView& p, float shift, int power) {
   const auto fpower = static_cast<float>(power);
   return par::reduce(
-      p.size(), grain, 0.0,
+      p.size(), kSumBlock, 0.0,
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
         return lane_sum(begin, end, [&](std::size_t i) {
@@ -78,7 +82,7 @@ NormalizeResult normalize(const ParticleView& p, std::size_t grain) {
     constexpr double kNegInfD = -std::numeric_limits<double>::infinity();
     return {WeightStatus::kDegenerate, kNegInfD, kNegInfD, static_cast<double>(p.size())};
   }
-  const double total = sum_exp(p, max_logw, grain, 1);  // >= 1: the max contributes exp(0)
+  const double total = sum_exp(p, max_logw, 1);  // >= 1: the max contributes exp(0)
   const double log_total = static_cast<double>(max_logw) + std::log(total);
   // Subtract in two steps: v - max is exact for nearby values (Sterbenz), and log(total) is a
   // small number with full float precision; rounding log_total itself to float would scale
@@ -97,9 +101,9 @@ NormalizeResult normalize(const ParticleView& p, std::size_t grain) {
   return r;
 }
 
-double effective_sample_size(const ConstParticleView& p, std::size_t grain) {
+double effective_sample_size(const ConstParticleView& p, std::size_t /*grain*/) {
   if (p.size() == 0) return 0.0;
-  const double sum_sq = sum_exp(p, 0.0F, grain, 2);  // sum of w_i^2 = exp(2 logw_i)
+  const double sum_sq = sum_exp(p, 0.0F, 2);  // sum of w_i^2 = exp(2 logw_i)
   return sum_sq > 0.0 ? 1.0 / sum_sq : static_cast<double>(p.size());
 }
 

@@ -66,7 +66,9 @@ struct NormalizeResult {
 /// exponentiating, sums in double over the deterministic reduction tree, then subtracts
 /// log(sum). NaN log-weights count as -inf (weight 0) and are overwritten with -inf. When no
 /// particle has a finite log-weight, never produces NaN: sets every weight to 1/N and returns
-/// kDegenerate, so the caller can reject the update or inject recovery particles.
+/// kDegenerate, so the caller can reject the update or inject recovery particles. grain sets
+/// the chunk size of the element-wise passes; sums run over a fixed block grid, so results are
+/// bit-identical for any grain and thread count.
 NormalizeResult normalize(const ParticleView& particles, std::size_t grain = kDefaultGrain);
 
 /// 1 / sum(w_i^2) of already normalized log-weights (N for uniform weights, 1 for a point mass).
