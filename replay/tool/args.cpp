@@ -111,8 +111,9 @@ void print_help(std::ostream& out, std::string_view usage_line, std::string_view
                 std::span<const FlagSpec> specs) {
   out << "usage: " << usage_line << "\n\n" << about << "\n\nflags:\n";
   for (const FlagSpec& s : specs) {
-    std::string left = "--" + std::string(s.name);
-    if (!s.value.empty()) left += " " + std::string(s.value);
+    std::string left = "--";
+    left.append(s.name);
+    if (!s.value.empty()) left.append(" ").append(s.value);
     out << "  " << std::left << std::setw(26) << left << s.help << '\n';
   }
   out << "  " << std::left << std::setw(26) << "--help"

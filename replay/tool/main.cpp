@@ -23,6 +23,8 @@ constexpr std::string_view kHelp =
 
 int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "replay") return mote::tool::replay_command(rest);
+  if (command == "simulate") return mote::tool::simulate_command(rest);
+  if (command == "run") return mote::tool::run_command(rest);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kHelp;
     return 0;

@@ -1,0 +1,151 @@
+// The mote executable: help, exit statuses (0 ok, 2 bad usage, 1 bad input), one-line errors
+// naming the file, and end-to-end replays (simulated log; Intel log when the data is present).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "mote_test/data.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("mote_test_cli_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Runs `mote ARGS` through the shell, stdout captured by popen and stderr through a file.
+Outcome mote(const std::string& args) {
+  const fs::path err = scratch("stderr") / "err.txt";
+  const std::string cmd = std::string("'") + MOTE_EXE + "' " + args + " 2>'" + err.string() + "'";
+  Outcome o;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return o;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe) != nullptr) o.out += buf.data();
+  const int raw = pclose(pipe);
+  o.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  o.err = slurp(err);
+  return o;
+}
+
+// The number after "key": in a report.json; NaN when absent or null.
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + key.size() + 4, nullptr);
+}
+
+int lines(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(Cli, HelpDocumentsEveryCommandAndFlag) {
+  const Outcome top = mote("--help");
+  EXPECT_EQ(top.status, 0);
+  for (const char* cmd : {"replay", "simulate", "run"})
+    EXPECT_NE(top.out.find(cmd), std::string::npos);
+  const Outcome replay = mote("replay --help");
+  EXPECT_EQ(replay.status, 0);
+  for (const char* flag : {"--map", "--log", "--out", "--reference", "--config", "--model",
+                           "--particles", "--min-particles", "--max-particles", "--beams",
+                           "--threads", "--seed", "--init", "--init-pose", "--lenient"}) {
+    EXPECT_NE(replay.out.find(flag), std::string::npos) << flag;
+  }
+  EXPECT_EQ(mote("simulate --help").status, 0);
+  EXPECT_EQ(mote("run --help").status, 0);
+}
+
+TEST(Cli, BadUsageExitsWithTwoAndOneLine) {
+  for (const char* args :
+       {"", "frobnicate", "replay --bogus 1", "replay --map", "replay --map m.yaml --log l.clf",
+        "replay --map m.yaml --log l.clf --out d --particles ten",
+        "replay --map m.yaml --log l.clf --out d --threads -1",
+        "replay --map m.yaml --log l.clf --out d --model sonar",
+        "replay --map m.yaml --log l.clf --out d --init-pose 1,2",
+        "simulate --map m.yaml --out d --seconds 1e999", "run --seed x"}) {
+    const Outcome o = mote(args);
+    EXPECT_EQ(o.status, 2) << args;
+    if (std::string(args).empty()) continue;  // no command: the help text goes to stderr
+    EXPECT_EQ(lines(o.err), 1) << args << ": " << o.err;
+  }
+}
+
+TEST(Cli, BadInputExitsWithOneNamingTheFile) {
+  const fs::path dir = scratch("bad_input");
+  const fs::path yaml = dir / "broken.yaml";
+  std::ofstream(yaml) << "image: missing.pgm\nresolution: -1\n";
+  const Outcome o = mote("replay --map '" + yaml.string() + "' --log x.clf --out '" +
+                         (dir / "out").string() + "'");
+  EXPECT_EQ(o.status, 1);
+  EXPECT_EQ(lines(o.err), 1) << o.err;
+  EXPECT_NE(o.err.find("broken.yaml"), std::string::npos) << o.err;
+}
+
+TEST(Cli, SimulateThenReplayWritesTheOutputs) {
+  const fs::path dir = scratch("sim");
+  const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
+  ASSERT_EQ(mote("simulate --map '" + map.string() + "' --out '" + dir.string() +
+                 "' --seconds 15 --seed 3")
+                .status,
+            0);
+  const Outcome o =
+      mote("replay --map '" + map.string() + "' --log '" + (dir / "sim.clf").string() +
+           "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" +
+           (dir / "out").string() + "' --particles 2000");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.out.find("ATE RMSE"), std::string::npos);
+  const std::string report = slurp(dir / "out" / "report.json");
+  EXPECT_DOUBLE_EQ(json_number(report, "particles_mean"), 2000.0);
+  EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
+  EXPECT_TRUE(fs::exists(dir / "out" / "map.png"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "trajectory.tum"));
+  EXPECT_EQ(report.find("nan"), std::string::npos);
+}
+
+// The accuracy targets on the Intel lab log (5 cm map, reference poses per scan), and
+// bit-identical trajectories on 1 and 2 threads (design.md section 3, determinism).
+TEST(Cli, IntelReplayMeetsTargetsAndIsThreadInvariant) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  const fs::path dir = scratch("intel");
+  const std::string common = "replay --map '" + yaml.string() + "' --log '" +
+                             (data / "intel.clf").string() + "' --reference '" +
+                             (data / "intel.gt.tum").string() +
+                             "' --particles 5000 --model likelihood_field --quiet";
+  ASSERT_EQ(mote(common + " --threads 1 --out '" + (dir / "t1").string() + "'").status, 0);
+  ASSERT_EQ(mote(common + " --threads 2 --out '" + (dir / "t2").string() + "'").status, 0);
+  const std::string t1 = slurp(dir / "t1" / "trajectory.tum");
+  EXPECT_GT(lines(t1), 800);
+  EXPECT_EQ(t1, slurp(dir / "t2" / "trajectory.tum"));
+  const std::string report = slurp(dir / "t2" / "report.json");
+  EXPECT_LE(json_number(report, "ate_rmse_m"), 0.05);
+  EXPECT_LE(json_number(report, "heading_rmse_deg"), 1.0);
+}
+
+}  // namespace
