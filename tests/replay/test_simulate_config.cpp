@@ -1,5 +1,5 @@
 /// \file
-/// The simulator's seeds, config checks and start pose, the bundled floor plan, and runs on
+/// The simulator's seeds, config checks, start pose and files, the bundled floor plan, and runs on
 /// recorded maps of other buildings.
 
 #include <gtest/gtest.h>
@@ -80,6 +80,43 @@ TEST(SimulateConfig, StartsAtTheGivenPoseAndHonoursTheLayout) {
   const std::vector<StampedPose> truth = read_tum(files.ground_truth);
   ASSERT_EQ(truth.size(), sim.truth.size());
   for (std::size_t k = 0; k < truth.size(); ++k) EXPECT_EQ(truth[k].stamp, sim.truth[k].stamp);
+}
+
+TEST(SimulateConfig, NoiselessOdometryEqualsTheTruth) {
+  const OccupancyGrid map = load_map(bundled_map_path());
+  SimulationConfig config;
+  config.seconds = 10.0;
+  config.odometry = {0.0, 0.0, 0.0, 0.0, 0.0};
+  const Simulation sim = simulate(map, config);
+  for (std::size_t k = 0; k < sim.frames.size(); ++k) {
+    const Pose2 d = between(sim.truth[k].pose, sim.frames[k].odometry);
+    ASSERT_LT(std::hypot(d.x, d.y), 1e-9) << k;
+    ASSERT_LT(std::abs(d.theta), 1e-9) << k;
+  }
+}
+
+TEST(SimulateFiles, RoundTripThroughTheReaders) {
+  const OccupancyGrid map = load_map(bundled_map_path());
+  SimulationConfig config;
+  config.seconds = 20.0;
+  const Simulation sim = simulate(map, config);
+  const SimulationFiles files = write_simulation(sim, test::temp_dir() / "out");
+  EXPECT_EQ(files.log.filename(), "sim.clf");
+  EXPECT_EQ(files.ground_truth.filename(), "sim.gt.tum");
+  auto source = open_carmen_log(files.log);
+  const std::vector<ScanFrame> frames = test::read_all(*source);
+  const std::vector<StampedPose> truth = read_tum(files.ground_truth);
+  ASSERT_EQ(frames.size(), sim.frames.size());
+  ASSERT_EQ(truth.size(), sim.truth.size());
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    ASSERT_EQ(frames[k].stamp, sim.frames[k].stamp);
+    ASSERT_EQ(frames[k].odometry, sim.frames[k].odometry);
+    ASSERT_EQ(frames[k].scan.ranges, sim.frames[k].scan.ranges);
+    ASSERT_EQ(truth[k].stamp, sim.truth[k].stamp);  // scans and poses pair up by stamp
+    ASSERT_NEAR(truth[k].pose.x, sim.truth[k].pose.x, 1e-6);
+    ASSERT_NEAR(truth[k].pose.y, sim.truth[k].pose.y, 1e-6);
+    ASSERT_NEAR(truth[k].pose.theta, sim.truth[k].pose.theta, 1e-8);
+  }
 }
 
 TEST(BundledMap, IsAnAsymmetricOfficeFloorPlan) {
