@@ -17,9 +17,12 @@ int checked_border(int border, const DistanceField& field) {
     throw ConfigError("likelihood table: border must be 1..1000000 cells, got " +
                       std::to_string(border));
   }
-  // The float clamp bounds must stay exactly representable (2^24) for the index math.
-  if (field.width() + 2 * border > (1 << 24) || field.height() + 2 * border > (1 << 24)) {
-    throw ConfigError("likelihood table: the map is wider than 2^24 cells");
+  // The float clamp bounds must stay exactly representable (2^24) and every index must fit
+  // int32 (LikelihoodView::lookup gathers with 32-bit indices).
+  const long long w = field.width() + 2LL * border;
+  const long long h = field.height() + 2LL * border;
+  if (w > (1 << 24) || h > (1 << 24) || w * h > 0x7FFFFFFFLL) {
+    throw ConfigError("likelihood table: more than 2^24 cells a side or 2^31 cells in all");
   }
   return border;
 }

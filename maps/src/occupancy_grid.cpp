@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mote/core/error.hpp"
+#include "mote/core/parallel.hpp"
 
 namespace mote {
 
@@ -27,6 +28,33 @@ void check_shape(int width, int height, double resolution, std::size_t cell_coun
     throw ConfigError("occupancy grid: more than 2^32 cells is not supported");
   }
 }
+/// Linear indices of the free cells, ascending: count per block, offsets by a prefix sum over
+/// the blocks, then fill; blocks are fixed, so the result never depends on the thread count.
+std::vector<std::uint32_t> index_free_cells(const std::vector<CellState>& cells) {
+  constexpr std::size_t kBlock = std::size_t{1} << 16;
+  const std::size_t blocks = (cells.size() + kBlock - 1) / kBlock;
+  std::vector<std::size_t> offset(blocks + 1, 0);
+  par::for_each_chunk(cells.size(), /*grain=*/kBlock, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; b += kBlock) {
+      offset[b / kBlock + 1] = static_cast<std::size_t>(
+          std::count(cells.begin() + static_cast<std::ptrdiff_t>(b),
+                     cells.begin() + static_cast<std::ptrdiff_t>(std::min(end, b + kBlock)),
+                     CellState::kFree));
+    }
+  });
+  for (std::size_t b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
+  std::vector<std::uint32_t> free(offset[blocks]);
+  par::for_each_chunk(cells.size(), /*grain=*/kBlock, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; b += kBlock) {
+      std::uint32_t* out = free.data() + offset[b / kBlock];
+      for (std::size_t k = b; k < std::min(end, b + kBlock); ++k) {
+        if (cells[k] == CellState::kFree) *out++ = static_cast<std::uint32_t>(k);
+      }
+    }
+  });
+  return free;
+}
+
 }  // namespace
 
 OccupancyGrid::OccupancyGrid(int width, int height, double resolution, Pose2 origin,
@@ -39,9 +67,7 @@ OccupancyGrid::OccupancyGrid(int width, int height, double resolution, Pose2 ori
       sin_yaw_(std::sin(origin.theta)),
       cells_(std::move(cells)) {
   check_shape(width, height, resolution, cells_.size());
-  for (std::size_t k = 0; k < cells_.size(); ++k) {
-    if (cells_[k] == CellState::kFree) free_.push_back(static_cast<std::uint32_t>(k));
-  }
+  free_ = index_free_cells(cells_);
 }
 
 Point2 OccupancyGrid::to_grid_frame(Point2 world) const noexcept {

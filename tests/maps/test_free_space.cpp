@@ -1,5 +1,6 @@
 // OccupancyGrid as FreeSpace: the free-cell index, points drawn in free cells, bounds.
 #include <gtest/gtest.h>
+#include <oneapi/tbb/task_arena.h>
 
 #include <random>
 #include <vector>
@@ -10,22 +11,35 @@
 namespace mote {
 namespace {
 
-OccupancyGrid random_grid(std::uint32_t seed, Pose2 origin) {
+OccupancyGrid random_grid(std::uint32_t seed, Pose2 origin, int w = 23, int h = 17) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> state(0, 2);
-  std::vector<CellState> cells(23 * 17);
+  std::vector<CellState> cells(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   for (CellState& c : cells) c = static_cast<CellState>(state(rng));
-  return {23, 17, 0.25, origin, std::move(cells)};
+  return {w, h, 0.25, origin, std::move(cells)};
 }
 
-TEST(FreeSpace, IndexListsExactlyTheFreeCellsInOrder) {
-  const OccupancyGrid grid = random_grid(5, Pose2{});
+std::vector<std::uint32_t> serial_free_index(const OccupancyGrid& grid) {
   std::vector<std::uint32_t> expected;
   for (std::uint32_t k = 0; k < grid.cell_count(); ++k) {
     if (grid.cells()[k] == CellState::kFree) expected.push_back(k);
   }
-  EXPECT_EQ(grid.free_cells(), expected);
-  EXPECT_EQ(grid.free_cell_count(), expected.size());
+  return expected;
+}
+
+TEST(FreeSpace, IndexListsExactlyTheFreeCellsInOrder) {
+  const OccupancyGrid grid = random_grid(5, Pose2{});
+  EXPECT_EQ(grid.free_cells(), serial_free_index(grid));
+  EXPECT_EQ(grid.free_cell_count(), serial_free_index(grid).size());
+}
+
+TEST(FreeSpace, IndexOverManyBlocksOnTwoThreads) {
+  // 701 x 303 cells span several 2^16-cell blocks of the parallel index, the last one partial.
+  tbb::task_arena two(2);
+  two.execute([] {
+    const OccupancyGrid grid = random_grid(8, Pose2{}, 701, 303);
+    EXPECT_EQ(grid.free_cells(), serial_free_index(grid));
+  });
 }
 
 TEST(FreeSpace, DrawnPointsFallInTheirFreeCell) {

@@ -5,6 +5,7 @@
 /// that a beam endpoint anywhere, even far off the map, reads a valid cell without a branch.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -25,6 +26,30 @@ struct TableTransform {
   float border = 1.0F;          ///< ring width, cells
   float max_col = 0.0F;         ///< last table column, as a float clamp bound
   float max_row = 0.0F;         ///< last table row, as a float clamp bound
+};
+
+/// The table as plain values: what a vectorized sensor-model loop needs.
+struct LikelihoodView {
+  const float* data = nullptr;  ///< row-major from the bottom table row
+  std::int32_t stride = 0;      ///< floats per table row (the whole table fits int32 indices)
+  TableTransform transform;
+
+  /// The value at a map frame point, m. Branch-free: the fractional index is clamped into
+  /// [0, max] before truncation, so any point off the map (also inf or NaN) reads a border
+  /// cell. `a > b ? a : b` compiles to maxss/vmaxps, which returns b for NaN.
+  [[nodiscard]] float lookup(float x, float y) const noexcept {
+    const TableTransform& t = transform;
+    const float dx = x - t.origin_x;
+    const float dy = y - t.origin_y;
+    float col = (t.cos_yaw * dx + t.sin_yaw * dy) * t.inv_resolution + t.border;
+    float row = (t.cos_yaw * dy - t.sin_yaw * dx) * t.inv_resolution + t.border;
+    col = col > 0.0F ? col : 0.0F;
+    row = row > 0.0F ? row : 0.0F;
+    col = col < t.max_col ? col : t.max_col;
+    row = row < t.max_row ? row : t.max_row;
+    // 32-bit indices let the compiler use a vector gather (vgatherdps).
+    return data[static_cast<std::int32_t>(row) * stride + static_cast<std::int32_t>(col)];
+  }
 };
 
 /// f(distance) over the grid plus a border ring holding `outside`.
@@ -51,22 +76,13 @@ class LikelihoodTable {
                    static_cast<std::size_t>(c.i + border_)];
   }
 
-  /// The value at a map frame point, m. Branch-free: the fractional index is clamped into
-  /// [0, max] before truncation, so any point off the map (also inf or NaN) reads a border
-  /// cell. `a > b ? a : b` compiles to maxss/vmaxps, which returns b for NaN.
-  [[nodiscard]] float lookup(float x, float y) const noexcept {
-    const TableTransform& t = transform_;
-    const float dx = x - t.origin_x;
-    const float dy = y - t.origin_y;
-    float col = (t.cos_yaw * dx + t.sin_yaw * dy) * t.inv_resolution + t.border;
-    float row = (t.cos_yaw * dy - t.sin_yaw * dx) * t.inv_resolution + t.border;
-    col = col > 0.0F ? col : 0.0F;
-    row = row > 0.0F ? row : 0.0F;
-    col = col < t.max_col ? col : t.max_col;
-    row = row < t.max_row ? row : t.max_row;
-    return values_[static_cast<std::size_t>(static_cast<int>(row)) * stride_ +
-                   static_cast<std::size_t>(static_cast<int>(col))];
+  /// A copyable view for hot loops (see LikelihoodView::lookup).
+  [[nodiscard]] LikelihoodView view() const noexcept {
+    return {values_.data(), static_cast<std::int32_t>(stride_), transform_};
   }
+  /// The value at a map frame point, m (see LikelihoodView::lookup). In a loop over many
+  /// points, copy view() into a local first so the compiler can keep it in registers.
+  [[nodiscard]] float lookup(float x, float y) const noexcept { return view().lookup(x, y); }
 
  private:
   int width_;
