@@ -26,11 +26,12 @@ struct YamlSource {
   }
 };
 
-YAML::Node require(const YamlSource& src, const YAML::Node& root, const std::string& key) {
+/// root[key], which must be present; scalar keys must hold a single value.
+YAML::Node require(const YamlSource& src, const YAML::Node& root, const std::string& key,
+                   bool scalar = true) {
   YAML::Node node = root[key];
   if (!node) src.fail("key '" + key + "'", "missing required key");
-  if (!node.IsScalar() && key != "origin")
-    src.fail(YamlSource::where(node, key), "expected a scalar");
+  if (scalar && !node.IsScalar()) src.fail(YamlSource::where(node, key), "expected a single value");
   return node;
 }
 
@@ -70,18 +71,19 @@ MapMode as_mode(const YamlSource& src, const YAML::Node& root) {
            "unknown mode '" + name + "' (expected trinary, scale or raw)");
 }
 
+void check_threshold(const YamlSource& src, const YAML::Node& root, const char* key, double v) {
+  if (v < 0.0 || v > 1.0) {
+    src.fail(YamlSource::where(root[key], key), "threshold outside [0, 1]: " + root[key].Scalar());
+  }
+}
+
 void check_ranges(const YamlSource& src, const YAML::Node& root, const MapMetadata& m) {
   if (!(m.resolution > 0.0)) {
     src.fail(YamlSource::where(root["resolution"], "resolution"),
              "resolution must be positive, got " + root["resolution"].Scalar());
   }
-  for (const char* key : {"occupied_thresh", "free_thresh"}) {
-    const double v = key[0] == 'o' ? m.occupied_thresh : m.free_thresh;
-    if (v < 0.0 || v > 1.0) {
-      src.fail(YamlSource::where(root[key], key),
-               "threshold outside [0, 1]: " + root[key].Scalar());
-    }
-  }
+  check_threshold(src, root, "occupied_thresh", m.occupied_thresh);
+  check_threshold(src, root, "free_thresh", m.free_thresh);
   if (m.free_thresh >= m.occupied_thresh) {
     src.fail(YamlSource::where(root["free_thresh"], "free_thresh"),
              "free_thresh must be below occupied_thresh");
@@ -110,7 +112,7 @@ MapMetadata read_map_metadata(const std::filesystem::path& yaml) {
   m.image = std::filesystem::path(image).is_absolute() ? std::filesystem::path(image)
                                                        : yaml.parent_path() / image;
   m.resolution = as_number(src, require(src, root, "resolution"), "resolution");
-  m.origin = as_origin(src, require(src, root, "origin"));
+  m.origin = as_origin(src, require(src, root, "origin", /*scalar=*/false));
   m.negate = as_flag(src, require(src, root, "negate"), "negate");
   m.occupied_thresh = as_number(src, require(src, root, "occupied_thresh"), "occupied_thresh");
   m.free_thresh = as_number(src, require(src, root, "free_thresh"), "free_thresh");

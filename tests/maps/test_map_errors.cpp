@@ -84,6 +84,9 @@ TEST_F(MapErrors, YamlKeys) {
   expect_error(yaml("negate", "negate: 2"), f, "expected 0 or 1");
   expect_error(write("map.yaml", "image: [ok.pgm\nresolution: 0.05\n"), f, "invalid YAML");
   expect_error(dir_ / "absent.yaml", dir_ / "absent.yaml", "cannot open map YAML file");
+  expect_error(yaml("resolution", "resolution: [0.05]"), f,
+               "key 'resolution': expected a single value");
+  expect_error(write("map.yaml", "just some text\n"), f, "line 1: expected a YAML mapping");
 }
 
 TEST_F(MapErrors, ImageFiles) {
