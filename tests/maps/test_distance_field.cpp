@@ -9,6 +9,9 @@
 
 #include "mote/core/error.hpp"
 #include "mote/maps/distance_field.hpp"
+#include "mote/maps/likelihood_table.hpp"
+#include "mote/maps/map_loader.hpp"
+#include "mote_test/data.hpp"
 
 namespace mote {
 namespace {
@@ -112,6 +115,36 @@ TEST(DistanceField, SameOnOneAndTwoThreadsAndEqualsBruteForce) {
   two.execute([&] { b = DistanceField(grid).distances(); });
   EXPECT_EQ(a, b);
   EXPECT_EQ(a, brute_force(grid, {}));
+}
+
+TEST(DistanceField, RecordedMapSpotChecksAgainstBruteForce) {
+  MOTE_REQUIRE_DATA(path, "maps/basement_fixed.map.yaml");
+  const OccupancyGrid grid = load_map(path);
+  const DistanceField field(grid);
+  std::vector<CellIndex> walls;
+  for (int j = 0; j < grid.height(); ++j) {
+    for (int i = 0; i < grid.width(); ++i) {
+      if (grid.at({i, j}) == CellState::kOccupied) walls.push_back({i, j});
+    }
+  }
+  std::mt19937 rng(4);
+  std::uniform_int_distribution<int> col(0, grid.width() - 1);
+  std::uniform_int_distribution<int> row(0, grid.height() - 1);
+  for (int k = 0; k < 200; ++k) {
+    const CellIndex c{col(rng), row(rng)};
+    double best = std::numeric_limits<double>::infinity();
+    for (const CellIndex w : walls) {
+      best = std::min(best, std::pow(c.i - w.i, 2.0) + std::pow(c.j - w.j, 2.0));
+    }
+    ASSERT_EQ(field.at(c), static_cast<float>(std::sqrt(best) * grid.resolution()));
+  }
+  // The table on the yawed map reads each wall cell's own value at its centre.
+  const LikelihoodTable table(
+      field, [](float d) { return -d; }, 1.0F);
+  for (std::size_t k = 0; k < walls.size(); k += 97) {
+    const Point2 p = grid.cell_center(walls[k]);
+    EXPECT_EQ(table.lookup(static_cast<float>(p.x), static_cast<float>(p.y)), -0.0F);
+  }
 }
 
 }  // namespace
