@@ -5,6 +5,8 @@
 #include <fstream>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
+#include <string>
 
 #include "mote/core/error.hpp"
 #include "mote/replay/map_image.hpp"
