@@ -12,28 +12,25 @@ namespace {
 
 constexpr std::uint64_t kOne = std::uint64_t{1} << 32;  // one copy in 32.32 fixed point
 
-// The shared front end of every scheme: q (scratch 0) and its exclusive prefix sum C (scratch
-// 1, with C[N] = total). Weights must be normalized; q_i <= n_out * 2^32 < 2^64.
+// The shared front end of every scheme: the exclusive prefix sum C of q_i = floor(w_i n_out
+// 2^32) in scratch 1, with C[N] = total; q_i = C[i+1] - C[i]. q is computed inside the scan,
+// so no q column is written or read back. Weights must be normalized; q_i <= n_out 2^32 < 2^64.
 struct FixedWeights {
-  const std::uint64_t* q;
   const std::uint64_t* c;
   std::uint64_t total;
+  [[nodiscard]] std::uint64_t q(std::size_t i) const { return c[i + 1] - c[i]; }
 };
 
 FixedWeights fixed_point_weights(ParticleStore& store, std::size_t n_out, std::size_t grain) {
   const ConstParticleView in = store.view();
-  std::uint64_t* q = store.scratch(0);
   std::uint64_t* c = store.scratch(1);
   const double scale = static_cast<double>(n_out) * static_cast<double>(kOne);
-  par::for_each_chunk(in.size(), grain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      q[i] = static_cast<std::uint64_t>(static_cast<double>(fast_exp(in.logw[i])) * scale);
-    }
-  });
   const std::uint64_t total =
-      par::exclusive_scan<std::uint64_t>(in.size(), grain, c, [&](std::size_t i) { return q[i]; });
+      par::exclusive_scan<std::uint64_t>(in.size(), grain, c, [&](std::size_t i) {
+        return static_cast<std::uint64_t>(static_cast<double>(fast_exp(in.logw[i])) * scale);
+      });
   c[in.size()] = total;
-  return {q, c, total};
+  return {c, total};
 }
 
 // The scheme's own fixed-point total may differ from n_out * 2^32 by a few units; a position
@@ -61,11 +58,6 @@ std::uint64_t comb_offset(std::uint64_t seed, std::uint64_t step) {
   return rng.block(0)[0];  // U in [0, 2^32): the one uniform of systematic resampling
 }
 
-// Index of the first comb tooth j * 2^32 + u at or after position c (ceil((c - u) / 2^32)).
-std::uint64_t first_tooth(std::uint64_t c, std::uint64_t u) {
-  return c <= u ? 0 : (c - u + kOne - 1) >> 32;
-}
-
 // Fallback when every q_i rounded to 0 (not normalized, or n_out == 0): spread evenly.
 bool resample_empty_total(ParticleStore& store, std::size_t n_out, const FixedWeights& fw) {
   if (fw.total != 0 && n_out != 0) return false;
@@ -78,6 +70,11 @@ bool resample_empty_total(ParticleStore& store, std::size_t n_out, const FixedWe
   return true;
 }
 
+// Comb tooth j sits at j 2^32 + u; past the total it belongs to the last weighted particle.
+std::uint64_t tooth(std::size_t j, std::uint64_t u, const FixedWeights& fw) {
+  return std::min(j * kOne + u, fw.total - 1);
+}
+
 }  // namespace
 
 void resample_systematic(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
@@ -88,15 +85,15 @@ void resample_systematic(ParticleStore& store, std::size_t n_out, std::uint64_t 
   const std::uint64_t u = comb_offset(seed, step);
   const ConstParticleView in = store.view();
   const ParticleView out = store.spare(n_out);
-  const std::size_t n = in.size();
-  par::for_each_chunk(n, grain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      if (fw.q[i] == 0) continue;
-      const bool last = fw.c[i] + fw.q[i] == fw.total;  // owns the teeth past the total
-      const std::uint64_t jb = std::min<std::uint64_t>(first_tooth(fw.c[i], u), n_out);
-      const std::uint64_t je =
-          last ? n_out : std::min<std::uint64_t>(first_tooth(fw.c[i] + fw.q[i], u), n_out);
-      for (std::uint64_t j = jb; j < je; ++j) copy_particle(in, i, out, j);
+  // Parallel over chunks of outputs: each chunk finds the ancestor of its first tooth by binary
+  // search (the largest i with C_i <= tooth), then walks the pointer like the serial sampler.
+  // Both give the same i for every tooth, so the result is the serial one exactly.
+  par::for_each_chunk(n_out, grain, [&](std::size_t begin, std::size_t end) {
+    std::size_t i = ancestor_of(fw, in.size(), tooth(begin, u, fw));
+    for (std::size_t j = begin; j < end; ++j) {
+      const std::uint64_t pos = tooth(j, u, fw);
+      while (fw.c[i + 1] <= pos) ++i;
+      copy_particle(in, i, out, j);
     }
   });
   finish(store, n_out);
@@ -112,7 +109,7 @@ void resample_systematic_serial(ParticleStore& store, std::size_t n_out, std::ui
   const ParticleView out = store.spare(n_out);
   std::size_t i = 0;
   for (std::size_t j = 0; j < n_out; ++j) {
-    const std::uint64_t pos = std::min(j * kOne + u, fw.total - 1);
+    const std::uint64_t pos = std::min(j * kOne + u, fw.total - 1);  // the comb tooth
     while (fw.c[i + 1] <= pos) ++i;  // Thrun table 4.4, lines 7-9 (c[N] = total > pos)
     copy_particle(in, i, out, j);
   }
@@ -163,14 +160,14 @@ void resample_residual(ParticleStore& store, std::size_t n_out, std::uint64_t se
   const ParticleView out = store.spare(n_out);
   std::size_t j = 0;
   std::uint64_t residual_total = 0;
-  std::uint64_t* residual = store.scratch(1);  // C is no longer needed: reuse as residual sums
+  std::uint64_t* residual = store.scratch(0);  // residual prefix sums beside C
   for (std::size_t i = 0; i < in.size(); ++i) {
-    for (std::uint64_t k = 0; k < (fw.q[i] >> 32) && j < n_out; ++k) copy_particle(in, i, out, j++);
+    for (std::uint64_t k = 0; k < (fw.q(i) >> 32) && j < n_out; ++k) copy_particle(in, i, out, j++);
     residual[i] = residual_total;
-    residual_total += fw.q[i] & (kOne - 1);
+    residual_total += fw.q(i) & (kOne - 1);
   }
   residual[in.size()] = residual_total;
-  const FixedWeights rest{fw.q, residual, residual_total};
+  const FixedWeights rest{residual, residual_total};
   const RngStream rng{seed, step, RngPurpose::kResample};
   for (; j < n_out; ++j) {
     const double uj = rng.uniform_double(static_cast<std::uint32_t>(j), 3);
