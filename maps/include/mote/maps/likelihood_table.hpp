@@ -47,7 +47,7 @@ struct LikelihoodView {
     row = row > 0.0F ? row : 0.0F;
     col = col < t.max_col ? col : t.max_col;
     row = row < t.max_row ? row : t.max_row;
-    // 32-bit indices let the compiler use a vector gather (vgatherdps).
+    // 32-bit index arithmetic lets GCC vectorize the loop (with int64 math it gives up).
     return data[static_cast<std::int32_t>(row) * stride + static_cast<std::int32_t>(col)];
   }
 };
