@@ -18,6 +18,7 @@
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/engine/fast_math.hpp"
+#include "mote/engine/resample.hpp"
 
 namespace mote {
 
@@ -122,6 +123,13 @@ std::size_t KldBins::count(const ConstParticleView& p, std::size_t grain) {
 std::size_t kld_sample_count(const ConstParticleView& particles, KldBins& bins,
                              const KldConfig& config, std::size_t grain) {
   return kld_sample_count(bins.count(particles, grain), config);
+}
+
+std::size_t resample_kld_systematic(ParticleStore& store, KldBins& bins, const KldConfig& config,
+                                    std::uint64_t seed, std::uint64_t step, std::size_t grain) {
+  const std::size_t n = kld_sample_count(store.view(), bins, config, grain);
+  resample_systematic(store, n, seed, step, grain);
+  return n;
 }
 
 }  // namespace mote

@@ -6,6 +6,8 @@
 
 #include "mote/core/error.hpp"
 #include "mote/engine/executor.hpp"
+#include "mote/engine/resample.hpp"
+#include "mote/engine/weights.hpp"
 
 namespace mote {
 namespace {
@@ -80,6 +82,31 @@ TEST(KldBins, CountIsIndependentOfThreads) {
   KldConfig config;
   config.max_particles = 100000;
   EXPECT_EQ(kld_sample_count(p, bins, config), kld_sample_count(serial, config));
+}
+
+// Count first (from the weighted set's bins), then one systematic draw of exactly n particles.
+TEST(KldResample, DrawsTheCountOfTheWeightedSetsBins) {
+  KldBins bins({-10.0, -10.0, 10.0, 10.0}, 0.5, 0.5, 0.5);
+  ParticleStore store(3000);
+  const ParticleView p = store.view();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.set_pose(i, {0.01 * double(i % 700) - 3.5, 0.002 * double(i), 0.0});
+    p.logw[i] = -0.001F * static_cast<float>(i);
+  }
+  ASSERT_TRUE(normalize(p).ok());
+  KldConfig config;
+  config.min_particles = 10;
+  config.max_particles = 100000;
+  const std::size_t expected = kld_sample_count(bins.count(store.view()), config);
+  ParticleStore reference(3000);
+  std::copy_n(p.x, 3000, reference.view().x);
+  std::copy_n(p.y, 3000, reference.view().y);
+  std::copy_n(p.logw, 3000, reference.view().logw);
+  EXPECT_EQ(resample_kld_systematic(store, bins, config, 4, 5), expected);
+  EXPECT_EQ(store.size(), expected);
+  resample_systematic_serial(reference, expected, 4, 5);
+  for (std::size_t i = 0; i < expected; ++i)
+    ASSERT_EQ(store.view().pose(i), reference.view().pose(i));
 }
 
 }  // namespace

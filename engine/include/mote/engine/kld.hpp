@@ -69,4 +69,11 @@ class KldBins {
                                            const KldConfig& config,
                                            std::size_t grain = kDefaultGrain);
 
+/// KLD-sampling with one systematic pass: n = kld_sample_count(current set) and then
+/// resample_systematic(store, n, seed, step, grain) (see kld.cpp for the statistics of this
+/// order). The store's weights must be normalized. Returns n.
+std::size_t resample_kld_systematic(ParticleStore& store, KldBins& bins, const KldConfig& config,
+                                    std::uint64_t seed, std::uint64_t step,
+                                    std::size_t grain = kDefaultGrain);
+
 }  // namespace mote
