@@ -155,8 +155,11 @@ TEST_F(LocalizerOnIntel, RecoversFromAKidnapping) {
     drive.feed(filter);
     injected += filter.last_update().injected;
   }
+  // Found again: within the convergence bounds `mote replay` reports (0.5 m, 10 degrees).
+  // Accuracy once found is the tracking tests' business.
   EXPECT_GT(injected, 0U);
-  EXPECT_LT(test::position_error(filter.estimate().best().mean, drive.truth), 0.2);
+  EXPECT_LT(test::position_error(filter.estimate().best().mean, drive.truth), 0.5);
+  EXPECT_LT(test::heading_error(filter.estimate().best().mean, drive.truth), 10 * kDeg);
 }
 
 // Runs 100 updates and returns the particle columns, bytes and all.

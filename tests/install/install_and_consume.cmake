@@ -12,8 +12,7 @@ file(REMOVE_RECURSE ${WORK_DIR})
 
 set(flags "")
 if(SANITIZE)
-  string(REPLACE ";" "," san "${SANITIZE}")
-  set(flags "-fsanitize=${san}")
+  set(flags "-fsanitize=${SANITIZE}")
 endif()
 
 run_step("install" ${CMAKE_COMMAND} --install ${MOTE_BINARY_DIR} --prefix ${prefix})

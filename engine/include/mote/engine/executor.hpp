@@ -32,9 +32,9 @@ class Executor {
   /// Runs job on this executor's threads and waits for it; exceptions propagate.
   void run(const std::function<void()>& job) const;
 
-  /// Runs f on this executor's threads and returns its result.
+  /// Runs f on this executor's threads and returns its result (by value).
   template <class F>
-  decltype(auto) operator()(F&& f) const {
+  std::invoke_result_t<F&> operator()(F&& f) const {
     using R = std::invoke_result_t<F&>;
     if constexpr (std::is_void_v<R>) {
       run([&] { f(); });
