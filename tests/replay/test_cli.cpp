@@ -2,6 +2,7 @@
 // naming the file, and end-to-end replays (simulated log; Intel log when the data is present).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -32,8 +33,10 @@ std::string slurp(const fs::path& path) {
   return s.str();
 }
 
+// A folder of this process's own: ctest runs each test in its own process, in parallel.
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("mote_test_cli_" + name);
+  const fs::path dir =
+      fs::temp_directory_path() / ("mote_test_cli_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
