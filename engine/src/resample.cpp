@@ -116,39 +116,43 @@ void resample_systematic_serial(ParticleStore& store, std::size_t n_out, std::ui
   finish(store, n_out);
 }
 
-void resample_multinomial(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
-                          std::uint64_t step, std::size_t grain) {
+namespace {
+
+// Output j copies the particle whose fixed-point interval holds position(fw, j); the shared
+// body of the independent-draw baselines (multinomial, stratified).
+template <class Position>
+void resample_by_position(ParticleStore& store, std::size_t n_out, std::size_t grain,
+                          const Position& position) {
   store.reserve(n_out);
   const FixedWeights fw = fixed_point_weights(store, n_out, grain);
   if (resample_empty_total(store, n_out, fw)) return;
-  const RngStream rng{seed, step, RngPurpose::kResample};
   const ConstParticleView in = store.view();
   const ParticleView out = store.spare(n_out);
-  const auto total = static_cast<double>(fw.total);
   par::for_each_chunk(n_out, grain, [&](std::size_t begin, std::size_t end) {
     for (std::size_t j = begin; j < end; ++j) {
-      const double uj = rng.uniform_double(static_cast<std::uint32_t>(j), 1);
-      copy_particle(in, ancestor_of(fw, in.size(), static_cast<std::uint64_t>(uj * total)), out, j);
+      copy_particle(in, ancestor_of(fw, in.size(), position(fw, j)), out, j);
     }
   });
   finish(store, n_out);
 }
 
+}  // namespace
+
+void resample_multinomial(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
+                          std::uint64_t step, std::size_t grain) {
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  resample_by_position(store, n_out, grain, [&](const FixedWeights& fw, std::size_t j) {
+    const double uj = rng.uniform_double(static_cast<std::uint32_t>(j), 1);
+    return static_cast<std::uint64_t>(uj * static_cast<double>(fw.total));
+  });
+}
+
 void resample_stratified(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
                          std::uint64_t step, std::size_t grain) {
-  store.reserve(n_out);
-  const FixedWeights fw = fixed_point_weights(store, n_out, grain);
-  if (resample_empty_total(store, n_out, fw)) return;
   const RngStream rng{seed, step, RngPurpose::kResample};
-  const ConstParticleView in = store.view();
-  const ParticleView out = store.spare(n_out);
-  par::for_each_chunk(n_out, grain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t j = begin; j < end; ++j) {
-      const std::uint64_t pos = j * kOne + rng.block(static_cast<std::uint32_t>(j), 2)[0];
-      copy_particle(in, ancestor_of(fw, in.size(), pos), out, j);
-    }
+  resample_by_position(store, n_out, grain, [&](const FixedWeights&, std::size_t j) {
+    return j * kOne + rng.block(static_cast<std::uint32_t>(j), 2)[0];
   });
-  finish(store, n_out);
 }
 
 void resample_residual(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
