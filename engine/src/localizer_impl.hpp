@@ -46,6 +46,7 @@ struct Localizer::Impl {
   KldConfig kld;
   KldBins bins;
   AugmentedMcl recovery;
+  PoseSummarizer summarize;  // keeps its scratch memory between updates
   ParticleStore store;
   BeamSet beams;
   LocalizationEstimate estimate;

@@ -73,7 +73,10 @@ Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
                 .keep_max_range = config.laser_model_type == LaserModel::kBeam},
       kld(kld_of(config)),
       bins(map.bounds(), config.kld_bin_xy, config.kld_bin_xy, config.kld_bin_theta),
-      recovery({config.recovery_alpha_slow, config.recovery_alpha_fast}) {
+      recovery({config.recovery_alpha_slow, config.recovery_alpha_fast}),
+      summarize(ClusterConfig{.bin_x = config.kld_bin_xy,
+                              .bin_y = config.kld_bin_xy,
+                              .bin_theta = config.kld_bin_theta}) {
   // The distance field / Embree scene are built in parallel on the Localizer's own threads.
   executor.run([&] { sensor = std::make_unique<SensorVariant>(make_sensor(map, config)); });
   store.reserve(static_cast<std::size_t>(config.max_particles));
@@ -158,12 +161,10 @@ void Localizer::Impl::maybe_resample() {
 }
 
 void Localizer::Impl::update_estimate() {
-  const ConstParticleView particles = std::as_const(store).view();
-  estimate.overall = mote::estimate(particles, config.grain);
-  estimate.clusters = cluster(particles, ClusterConfig{.bin_x = config.kld_bin_xy,
-                                                       .bin_y = config.kld_bin_xy,
-                                                       .bin_theta = config.kld_bin_theta});
-  // Heaviest first; ties keep the deterministic order cluster() gives.
+  const ParticleSummary& summary = summarize(std::as_const(store).view());
+  estimate.overall = summary.overall;
+  estimate.clusters = summary.clusters;
+  // Heaviest first; ties keep the deterministic order the summarizer gives.
   std::stable_sort(
       estimate.clusters.begin(), estimate.clusters.end(),
       [](const PoseEstimate& a, const PoseEstimate& b) { return a.weight > b.weight; });

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "mote/engine/estimate.hpp"
 
@@ -15,13 +16,14 @@ struct FirstMoments {
   std::size_t count = 0;
   Pose2 first;  // the first particle added: the mean of a set without positive weight
 
-  void add(double w, double x, double y, double theta) {
+  // Adds one particle given the cosine and sine of its heading.
+  void add(double w, double x, double y, double cos_theta, double sin_theta, double theta) {
     if (count == 0) first = {x, y, theta};
     s[0] += w;
     s[1] += w * x;
     s[2] += w * y;
-    s[3] += w * std::cos(theta);
-    s[4] += w * std::sin(theta);
+    s[3] += w * cos_theta;
+    s[4] += w * sin_theta;
     ++count;
   }
   friend FirstMoments operator+(FirstMoments a, const FirstMoments& b) {
@@ -36,12 +38,20 @@ struct FirstMoments {
   }
 };
 
+// theta - mean wrapped to (-pi, pi]; one conditional step when both are wrapped already.
+[[nodiscard]] inline double heading_residual(double theta, double mean) {
+  double d = theta - mean;
+  if (d > std::numbers::pi) d -= 2 * std::numbers::pi;
+  if (d <= -std::numbers::pi) d += 2 * std::numbers::pi;
+  return d > -std::numbers::pi && d <= std::numbers::pi ? d : wrap_angle(d);
+}
+
 // Sums of w r r^T for residuals r = (dx, dy, wrapped dtheta): the 6 upper-triangle entries.
 struct SecondMoments {
   std::array<double, 6> s{};
 
   void add(double w, const Pose2& mean, double x, double y, double theta) {
-    const double r[3] = {x - mean.x, y - mean.y, wrap_angle(theta - mean.theta)};
+    const double r[3] = {x - mean.x, y - mean.y, heading_residual(theta, mean.theta)};
     s[0] += w * r[0] * r[0];
     s[1] += w * r[0] * r[1];
     s[2] += w * r[0] * r[2];

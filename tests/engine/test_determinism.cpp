@@ -66,7 +66,7 @@ RunResult run_filter(int threads, std::size_t grain) {
       inject_random_particles(store.view(), recovery.injection_probability(), space, kSeed,
                               static_cast<std::uint64_t>(step), grain);
     }
-    out.estimate = estimate(store.view(), grain).mean;
+    out.estimate = estimate(store.view()).mean;
   });
   const ConstParticleView v = store.view();
   for (const float* c : {v.x, v.y, v.theta, v.logw})

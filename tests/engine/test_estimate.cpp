@@ -48,9 +48,9 @@ TEST(Estimate, IsIndependentOfThreads) {
   }
   PoseEstimate serial;
   PoseEstimate parallel;
-  Executor(1)([&] { serial = estimate(p, 256); });
+  Executor(1)([&] { serial = estimate(p); });
   const Executor ex(4);
-  ex([&] { parallel = estimate(p, 256); });
+  ex([&] { parallel = estimate(p); });
   EXPECT_EQ(serial.mean, parallel.mean);
   EXPECT_EQ(serial.covariance, parallel.covariance);
 }

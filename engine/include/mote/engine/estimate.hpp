@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -24,9 +25,9 @@ struct PoseEstimate {
 };
 
 /// Weighted mean and covariance of the whole set (weights exp(logw), renormalized; NaN and
-/// -inf weigh 0). Deterministic reductions; a set without positive weight gives count 0.
-[[nodiscard]] PoseEstimate estimate(const ConstParticleView& particles,
-                                    std::size_t grain = kDefaultGrain);
+/// -inf weigh 0). Sums over a fixed block grid: bit-identical for any thread count. A set
+/// without positive weight gives count 0.
+[[nodiscard]] PoseEstimate estimate(const ConstParticleView& particles);
 
 /// How histogram bins connect into clusters.
 enum class Connectivity {
@@ -43,10 +44,35 @@ struct ClusterConfig {
 };
 
 /// Groups particles into clusters of connected occupied bins and summarizes each; clusters are
-/// ordered by their first particle index, so the output is deterministic. O(N) with a hash
-/// map of bins (serial; clustering runs once per update on the resampled set).
+/// ordered by their first particle index, so the output is deterministic. O(N): parallel passes
+/// for weights, bin keys and moments, one serial pass numbering the bins (a flat hash map).
 [[nodiscard]] std::vector<PoseEstimate> cluster(const ConstParticleView& particles,
                                                 const ClusterConfig& config = {});
+
+/// The whole-set estimate and the clusters of one particle set.
+struct ParticleSummary {
+  PoseEstimate overall;                ///< as estimate()
+  std::vector<PoseEstimate> clusters;  ///< as cluster(): ordered by first particle
+};
+
+/// estimate() and cluster() in one go, sharing the weights and moments between the two and
+/// keeping its scratch memory (per-particle weights, bin keys and numbers) between calls: what
+/// the Localizer runs once per update. Runs in the caller's task arena; bit-identical results for
+/// any thread count (sums over a fixed block grid, bins numbered in particle order).
+class PoseSummarizer {
+ public:
+  explicit PoseSummarizer(const ClusterConfig& config = {});
+  ~PoseSummarizer();
+  PoseSummarizer(PoseSummarizer&&) noexcept;
+  PoseSummarizer& operator=(PoseSummarizer&&) noexcept;
+
+  /// Summarizes `particles`; the clusters are left empty when with_clusters is false.
+  const ParticleSummary& operator()(const ConstParticleView& particles, bool with_clusters = true);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 /// The heaviest cluster, or nullptr when there is none.
 [[nodiscard]] const PoseEstimate* best_cluster(const std::vector<PoseEstimate>& clusters) noexcept;

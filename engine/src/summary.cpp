@@ -1,0 +1,226 @@
+// PoseSummarizer: the whole-set estimate and the clusters in five passes over the particles.
+//  1. max log-weight (parallel reduction);
+//  2. weights exp(logw - max), bin keys and the whole-set first moments (parallel, fixed blocks);
+//  3. bin numbers in order of first particle (serial, one flat-map lookup per change of key:
+//     resampled copies sit next to each other, so consecutive particles mostly share a bin);
+//  4. cluster first moments (skipped for a single cluster: they are the whole-set moments);
+//  5. second moments about the whole-set and cluster means (parallel, fixed blocks).
+// Sums run over a fixed block grid, so every result is bit-identical for any thread count.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cluster_labels.hpp"
+#include "moments.hpp"
+#include "mote/core/parallel.hpp"
+#include "mote/engine/estimate.hpp"
+#include "mote/engine/fast_math.hpp"
+
+namespace mote {
+namespace {
+
+using detail::FirstMoments;
+using detail::SecondMoments;
+
+// Sums run over blocks of this many particles, whatever the grain and the thread count.
+constexpr std::size_t kSumBlock = 2048;
+
+// Up to this many clusters, per-cluster sums run in parallel (one vector of sums per block);
+// beyond it serially, to keep the per-block vectors small.
+constexpr std::size_t kParallelClusterLimit = 64;
+
+float max_log_weight(const ConstParticleView& p) {
+  constexpr float kNegInf = -std::numeric_limits<float>::infinity();
+  return par::reduce(
+      p.size(), kSumBlock, kNegInf,
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        float m = kNegInf;
+        for (std::size_t i = begin; i < end; ++i) m = std::max(m, p.logw[i]);
+        return m;
+      },
+      /*join=*/[](float a, float b) { return std::max(a, b); });
+}
+
+// Weight relative to the largest, so an unnormalized set does not overflow; NaN weighs 0.
+float relative_weight(float logw, float max_logw) {
+  return logw == logw ? fast_exp(logw - max_logw) : 0.0F;
+}
+
+template <class Moments>
+std::vector<Moments> add_vectors(std::vector<Moments> a, const std::vector<Moments>& b) {
+  for (std::size_t c = 0; c < a.size(); ++c) a[c] = a[c] + b[c];
+  return a;
+}
+
+}  // namespace
+
+struct PoseSummarizer::State {
+  explicit State(const ClusterConfig& c) : index(c) {}
+
+  detail::BinIndex index;
+  std::vector<float> weight;             // exp(logw - max) per particle
+  std::vector<std::uint64_t> key;        // bin key per particle
+  std::vector<std::uint32_t> bin;        // bin number per particle
+  detail::BinMap bins;                   // key -> bin number
+  std::vector<detail::BinCoord> coords;  // bin number -> coordinates
+  std::vector<std::uint32_t> label;      // bin number -> cluster
+  ParticleSummary out;
+
+  void summarize(const ConstParticleView& p, bool with_clusters);
+  FirstMoments weigh_and_key(const ConstParticleView& p, float max_logw, bool with_keys);
+  void number_bins(const ConstParticleView& p);
+  std::vector<FirstMoments> cluster_first(const ConstParticleView& p, std::size_t k) const;
+  std::vector<SecondMoments> cluster_second(const ConstParticleView& p) const;
+  SecondMoments overall_second(const ConstParticleView& p) const;
+  std::uint32_t cluster_of(std::size_t i) const { return label[bin[i]]; }
+};
+
+FirstMoments PoseSummarizer::State::weigh_and_key(const ConstParticleView& p, float max_logw,
+                                                  bool with_keys) {
+  return par::reduce(
+      p.size(), kSumBlock, FirstMoments{},
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        FirstMoments m;
+        for (std::size_t i = begin; i < end; ++i) {
+          weight[i] = relative_weight(p.logw[i], max_logw);
+          const SinCos sc = fast_sin_cos(p.theta[i]);
+          m.add(weight[i], p.x[i], p.y[i], sc.cos, sc.sin, p.theta[i]);
+        }
+        if (with_keys) {
+          for (std::size_t i = begin; i < end; ++i) {
+            key[i] = detail::BinIndex::key(index.coord(p.x[i], p.y[i], p.theta[i]));
+          }
+        }
+        return m;
+      },
+      /*join=*/[](const FirstMoments& a, const FirstMoments& b) { return a + b; });
+}
+
+void PoseSummarizer::State::number_bins(const ConstParticleView& p) {
+  bins.clear();
+  coords.clear();
+  std::uint64_t last_key = 0;
+  std::uint32_t last_bin = detail::BinMap::kAbsent;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (key[i] != last_key || last_bin == detail::BinMap::kAbsent) {
+      last_key = key[i];
+      last_bin = bins.insert(last_key);
+      if (last_bin == coords.size()) coords.push_back(index.coord(p.x[i], p.y[i], p.theta[i]));
+    }
+    bin[i] = last_bin;
+  }
+  label = detail::label_bins(coords, bins, index.theta_bins());
+}
+
+std::vector<FirstMoments> PoseSummarizer::State::cluster_first(const ConstParticleView& p,
+                                                               std::size_t k) const {
+  const auto partial = [&](std::size_t begin, std::size_t end) {
+    std::vector<FirstMoments> m(k);
+    for (std::size_t i = begin; i < end; ++i) {
+      const SinCos sc = fast_sin_cos(p.theta[i]);
+      m[cluster_of(i)].add(weight[i], p.x[i], p.y[i], sc.cos, sc.sin, p.theta[i]);
+    }
+    return m;
+  };
+  if (k > kParallelClusterLimit) return partial(0, p.size());
+  return par::reduce(p.size(), kSumBlock, std::vector<FirstMoments>(k), partial,
+                     add_vectors<FirstMoments>);
+}
+
+std::vector<SecondMoments> PoseSummarizer::State::cluster_second(const ConstParticleView& p) const {
+  const std::size_t k = out.clusters.size();
+  const auto partial = [&](std::size_t begin, std::size_t end) {
+    std::vector<SecondMoments> m(k);
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t c = cluster_of(i);
+      m[c].add(weight[i], out.clusters[c].mean, p.x[i], p.y[i], p.theta[i]);
+    }
+    return m;
+  };
+  if (k > kParallelClusterLimit) return partial(0, p.size());
+  return par::reduce(p.size(), kSumBlock, std::vector<SecondMoments>(k), partial,
+                     add_vectors<SecondMoments>);
+}
+
+SecondMoments PoseSummarizer::State::overall_second(const ConstParticleView& p) const {
+  return par::reduce(
+      p.size(), kSumBlock, SecondMoments{},
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        SecondMoments m;
+        for (std::size_t i = begin; i < end; ++i) {
+          m.add(weight[i], out.overall.mean, p.x[i], p.y[i], p.theta[i]);
+        }
+        return m;
+      },
+      /*join=*/[](const SecondMoments& a, const SecondMoments& b) { return a + b; });
+}
+
+void PoseSummarizer::State::summarize(const ConstParticleView& p, bool with_clusters) {
+  out = {};
+  const float max_logw = max_log_weight(p);
+  if (!std::isfinite(max_logw)) return;
+  weight.resize(p.size());
+  if (with_clusters) {
+    key.resize(p.size());
+    bin.resize(p.size());
+  }
+  const FirstMoments first = weigh_and_key(p, max_logw, with_clusters);
+  out.overall.mean = first.mean();
+  out.overall.covariance = overall_second(p).covariance(first.s[0]);
+  out.overall.weight = 1.0;
+  out.overall.count = p.size();
+  if (!with_clusters) return;
+
+  number_bins(p);
+  const std::size_t k = label.empty() ? 0 : *std::max_element(label.begin(), label.end()) + 1;
+  if (k == 1) {  // one cluster: its sums are the whole set's
+    out.clusters.assign(1, out.overall);
+    return;
+  }
+  const std::vector<FirstMoments> first_c = cluster_first(p, k);
+  out.clusters.resize(k);
+  for (std::size_t c = 0; c < k; ++c) out.clusters[c].mean = first_c[c].mean();
+  const std::vector<SecondMoments> second_c = cluster_second(p);
+  for (std::size_t c = 0; c < k; ++c) {
+    PoseEstimate& e = out.clusters[c];
+    e.covariance = first_c[c].s[0] > 0 ? second_c[c].covariance(first_c[c].s[0])
+                                       : Eigen::Matrix3d::Zero().eval();
+    e.weight = first_c[c].s[0] / first.s[0];
+    e.count = first_c[c].count;
+  }
+}
+
+PoseSummarizer::PoseSummarizer(const ClusterConfig& config)
+    : state_(std::make_unique<State>(config)) {}
+PoseSummarizer::~PoseSummarizer() = default;
+PoseSummarizer::PoseSummarizer(PoseSummarizer&&) noexcept = default;
+PoseSummarizer& PoseSummarizer::operator=(PoseSummarizer&&) noexcept = default;
+
+const ParticleSummary& PoseSummarizer::operator()(const ConstParticleView& particles,
+                                                  bool with_clusters) {
+  state_->summarize(particles, with_clusters);
+  return state_->out;
+}
+
+PoseEstimate estimate(const ConstParticleView& particles) {
+  PoseSummarizer summarize;
+  return summarize(particles, /*with_clusters=*/false).overall;
+}
+
+std::vector<PoseEstimate> cluster(const ConstParticleView& particles, const ClusterConfig& config) {
+  PoseSummarizer summarize(config);
+  return summarize(particles).clusters;
+}
+
+const PoseEstimate* best_cluster(const std::vector<PoseEstimate>& clusters) noexcept {
+  const auto it = std::max_element(
+      clusters.begin(), clusters.end(),
+      [](const PoseEstimate& a, const PoseEstimate& b) { return a.weight < b.weight; });
+  return it == clusters.end() ? nullptr : &*it;
+}
+
+}  // namespace mote
