@@ -1,0 +1,181 @@
+// End-to-end benchmark (issue 7): one full Localizer::update() per iteration (motion, sensor,
+// normalize, resample, estimate) on a real map, with the odometry and scan of a simulated drive.
+// The particle count is fixed per case (min = max, so KLD never changes it) and every update
+// resamples (ESS fraction 1), so each case measures the phases its name says.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "e2e_cases.hpp"
+#include "e2e_world.hpp"
+#include "mote/engine/localizer.hpp"
+#include "mote/engine/particles.hpp"
+
+namespace mote::bench {
+
+namespace {
+
+// The largest beam count of the suite: the filter uses every beam of a scan, so one filter
+// serves every beam count (the scans carry exactly the case's beams).
+constexpr int kMaxBeams = 180;
+
+LocalizerConfig config_for(const Case& c) {
+  LocalizerConfig config;
+  config.laser_model_type = c.model;
+  config.min_particles = config.max_particles = c.particles;
+  config.threads = c.threads;
+  config.max_beams = kMaxBeams;
+  config.update_min_d = config.update_min_a = 0.0;  // every frame of the drive updates
+  config.resample_interval = 1;
+  config.resample_ess_fraction = 1.0;  // ESS < N after any informative scan: always resample
+  return config;
+}
+
+// The filter of the last case. Building it (map copy, distance field or Embree scene) is set-up:
+// consecutive cases with the same model, particle count and threads reuse it.
+struct FilterSlot {
+  LaserModel model = LaserModel::kLikelihoodField;
+  int particles = 0;
+  int threads = 0;
+  std::unique_ptr<Localizer> filter;
+  bool tracking = false;  // particles follow the drive; k is the last frame's update index
+  std::uint64_t k = 0;
+};
+
+Localizer& filter_for(FilterSlot& slot, const Case& c) {
+  if (!slot.filter || slot.model != c.model || slot.particles != c.particles ||
+      slot.threads != c.threads) {
+    slot.filter.reset();  // free the old particle set before allocating the new one
+    slot.filter = std::make_unique<Localizer>(world().map, config_for(c));
+    slot.model = c.model;
+    slot.particles = c.particles;
+    slot.threads = c.threads;
+    slot.tracking = false;
+    slot.k = 0;
+  }
+  return *slot.filter;
+}
+
+// Particles around the true pose (0.1 m, 3 degrees), then the first scan: the state a tracking
+// filter is in. Only done when the slot's filter is not already tracking the drive.
+void start_tracking(FilterSlot& slot, int beams) {
+  const World& w = world();
+  const std::size_t f = w.frame(slot.k);
+  slot.filter->initialize(w.truth[f], Eigen::Vector3d(0.01, 0.01, 0.003).asDiagonal());
+  slot.filter->update(w.odometry[f], w.scan(beams, f));
+  slot.tracking = true;
+}
+
+/// What the timed updates add up to.
+struct Totals {
+  PhaseTimes ms;
+  double particle_beams = 0.0;
+  double resampled = 0.0;
+  std::string failure;  // set when an update did not run the full filter
+
+  void add(const UpdateStats& s) {
+    if (s.outcome != UpdateOutcome::kUpdated) failure = "update did not run: " + s.reason;
+    ms.motion += s.ms.motion;
+    ms.sensor += s.ms.sensor;
+    ms.normalize += s.ms.normalize;
+    ms.resample += s.ms.resample;
+    ms.estimate += s.ms.estimate;
+    particle_beams += static_cast<double>(s.weighed) * static_cast<double>(s.beams);
+    resampled += s.resampled ? 1.0 : 0.0;
+  }
+};
+
+void run_tracking(benchmark::State& state, FilterSlot& slot, const Case& c, Totals& totals) {
+  const World& w = world();
+  if (!slot.tracking) start_tracking(slot, c.beams);
+  for (auto _ : state) {
+    const std::size_t f = w.frame(++slot.k);
+    slot.filter->update(w.odometry[f], w.scan(c.beams, f));
+    totals.add(slot.filter->last_update());
+  }
+  const Pose2 truth = w.truth[w.frame(slot.k)];
+  const Pose2 best = slot.filter->estimate().best().mean;
+  state.counters["err_m"] = std::hypot(best.x - truth.x, best.y - truth.y);
+}
+
+// Each timed update starts from particles uniform over free space. The untimed first update
+// after initialize_global() only weighs (no motion, no resampling), so one beam suffices.
+void run_global(benchmark::State& state, FilterSlot& slot, const Case& c, Totals& totals) {
+  const World& w = world();
+  slot.tracking = false;
+  for (auto _ : state) {
+    state.PauseTiming();
+    const std::size_t f = w.frame(slot.k++);
+    slot.filter->initialize_global();
+    slot.filter->update(w.odometry[f], middle_beam(w.scan(c.beams, f)));
+    const std::size_t g = w.frame(slot.k);
+    state.ResumeTiming();
+    slot.filter->update(w.odometry[g], w.scan(c.beams, g));
+    totals.add(slot.filter->last_update());
+  }
+}
+
+// Both particle buffers (x, y, theta, log-weight floats) and the two 64-bit resampling scratch
+// columns of capacity + 1 entries (particles.hpp), per particle.
+double bytes_per_particle(int particles) {
+  ParticleStore store;
+  store.reserve(static_cast<std::size_t>(particles));
+  const auto cap = static_cast<double>(store.capacity());
+  return (2.0 * 4.0 * sizeof(float) * cap + 2.0 * sizeof(std::uint64_t) * (cap + 1.0)) / particles;
+}
+
+void set_counters(benchmark::State& state, const Case& c, const Totals& t) {
+  using benchmark::Counter;
+  const auto iters = static_cast<double>(state.iterations());
+  const double per_particle = 1e6 / (iters * c.particles);  // ms summed -> ns per particle
+  state.counters["updates/s"] = Counter(iters, Counter::kIsRate);
+  state.counters["particle_beams/s"] = Counter(t.particle_beams, Counter::kIsRate);
+  // The beam model casts one ray per particle and beam (Thrun table 6.1).
+  if (c.model == LaserModel::kBeam) {
+    state.counters["rays/s"] = Counter(t.particle_beams, Counter::kIsRate);
+  }
+  state.counters["ns_motion/p"] = t.ms.motion * per_particle;
+  state.counters["ns_sensor/p"] = t.ms.sensor * per_particle;
+  state.counters["ns_normalize/p"] = t.ms.normalize * per_particle;
+  state.counters["ns_resample/p"] = t.ms.resample * per_particle;
+  state.counters["ns_estimate/p"] = t.ms.estimate * per_particle;
+  state.counters["bytes/p"] = bytes_per_particle(c.particles);
+  state.counters["resampled"] = t.resampled / iters;
+}
+
+void BM_Localizer_Update(benchmark::State& state, const Case& c) {
+  static FilterSlot slot;
+  filter_for(slot, c);
+  Totals totals;
+  if (c.setting == Setting::kTracking) {
+    run_tracking(state, slot, c, totals);
+  } else {
+    run_global(state, slot, c, totals);
+  }
+  if (!totals.failure.empty()) {
+    state.SkipWithError(totals.failure.c_str());
+    return;
+  }
+  set_counters(state, c, totals);
+}
+
+}  // namespace
+
+}  // namespace mote::bench
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::AddCustomContext("map", mote::bench::world().map_name);
+  for (const mote::bench::Case& c : mote::bench::all_cases()) {
+    benchmark::RegisterBenchmark(c.name().c_str(), mote::bench::BM_Localizer_Update, c)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
