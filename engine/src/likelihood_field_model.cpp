@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "likelihood_gather.hpp"
 #include "mote/core/error.hpp"
 #include "mote/engine/fast_math.hpp"
 
@@ -95,26 +96,31 @@ void LikelihoodFieldModel::weigh_block(const float* endpoint_x, const float* end
                                        std::size_t beams, const ParticleView& particles,
                                        std::size_t begin, std::size_t end) const {
   const std::size_t count = end - begin;
-  alignas(64) float cos_t[kBlock];
-  alignas(64) float sin_t[kBlock];
+  // Padding lanes past the last particle are computed and dropped (particles.hpp allows it),
+  // so every particle takes the vector path when chunks start at multiples of the padding.
+  const std::size_t lanes = std::min(pad_particles(count), particles.padded_size() - begin);
+  const LikelihoodView table = table_->view();
+  const TableTransform& t = table.transform;
+  // Each particle's pose in table cells: position (col0, row0) and heading rotated by the map
+  // yaw and scaled to cells (c, s), so an endpoint costs 4 multiply-adds, 4 clamps and a gather.
+  alignas(64) float col0[kBlock];
+  alignas(64) float row0[kBlock];
+  alignas(64) float c[kBlock];
+  alignas(64) float s[kBlock];
   alignas(64) float sum[kBlock];
-  const float* px = particles.x + begin;
-  const float* py = particles.y + begin;
-  for (std::size_t k = 0; k < count; ++k) {
+  for (std::size_t k = 0; k < lanes; ++k) {
+    const float dx = particles.x[begin + k] - t.origin_x;
+    const float dy = particles.y[begin + k] - t.origin_y;
+    col0[k] = (t.cos_yaw * dx + t.sin_yaw * dy) * t.inv_resolution + t.border;
+    row0[k] = (t.cos_yaw * dy - t.sin_yaw * dx) * t.inv_resolution + t.border;
     const SinCos sc = fast_sin_cos(particles.theta[begin + k]);
-    cos_t[k] = sc.cos;
-    sin_t[k] = sc.sin;
+    c[k] = (sc.cos * t.cos_yaw + sc.sin * t.sin_yaw) * t.inv_resolution;
+    s[k] = (sc.sin * t.cos_yaw - sc.cos * t.sin_yaw) * t.inv_resolution;
     sum[k] = 0.0F;
   }
-  const LikelihoodTable& table = *table_;
+  const detail::TablePoses poses{col0, row0, c, s};
   for (std::size_t b = 0; b < beams; ++b) {
-    const float bx = endpoint_x[b];
-    const float by = endpoint_y[b];
-    for (std::size_t k = 0; k < count; ++k) {
-      const float wx = px[k] + cos_t[k] * bx - sin_t[k] * by;
-      const float wy = py[k] + sin_t[k] * bx + cos_t[k] * by;
-      sum[k] += table.lookup(wx, wy);
-    }
+    detail::add_beam_likelihood(table, poses, endpoint_x[b], endpoint_y[b], sum, lanes);
   }
   const auto tau = static_cast<float>(params_.tempering);
   const bool cubed = params_.combination == LikelihoodCombination::kAmclCubedSum;

@@ -41,8 +41,14 @@ struct LikelihoodView {
     const TableTransform& t = transform;
     const float dx = x - t.origin_x;
     const float dy = y - t.origin_y;
-    float col = (t.cos_yaw * dx + t.sin_yaw * dy) * t.inv_resolution + t.border;
-    float row = (t.cos_yaw * dy - t.sin_yaw * dx) * t.inv_resolution + t.border;
+    return at_cell((t.cos_yaw * dx + t.sin_yaw * dy) * t.inv_resolution + t.border,
+                   (t.cos_yaw * dy - t.sin_yaw * dx) * t.inv_resolution + t.border);
+  }
+
+  /// The value at fractional table cell (col, row), for callers that transform into table
+  /// cells themselves. Clamped like lookup(): any col and row, also inf or NaN, are safe.
+  [[nodiscard]] float at_cell(float col, float row) const noexcept {
+    const TableTransform& t = transform;
     col = col > 0.0F ? col : 0.0F;
     row = row > 0.0F ? row : 0.0F;
     col = col < t.max_col ? col : t.max_col;
