@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "log_weights.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/engine/fast_math.hpp"
 
@@ -33,78 +34,90 @@ double lane_sum(std::size_t begin, std::size_t end, const F& f) {
   return total;
 }
 
-float max_log_weight(const ConstParticleView& p, std::size_t grain) {
+float max_log_weight(const float* logw, std::size_t n, std::size_t grain) {
   return par::reduce(
-      p.size(), grain, kNegInf,
+      n, grain, kNegInf,
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
         std::array<float, par::kVectorWidth> lanes;  // per-lane maxima: vectorizes
         lanes.fill(kNegInf);
         for (std::size_t i = begin; i < end; ++i) {
           float& m = lanes[i % par::kVectorWidth];
-          m = std::max(m, p.logw[i]);  // std::max(m, NaN) keeps m: NaN ignored
+          m = std::max(m, logw[i]);  // std::max(m, NaN) keeps m: NaN ignored
         }
         return *std::max_element(lanes.begin(), lanes.end());
       },
       /*join=*/[](float a, float b) { return std::max(a, b); });
 }
 
-double sum_exp(const ConstParticleView& p, float shift, int power) {
+double sum_exp(const float* logw, std::size_t n, float shift, int power) {
   const auto fpower = static_cast<float>(power);
   return par::reduce(
-      p.size(), kSumBlock, 0.0,
+      n, kSumBlock, 0.0,
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
         return lane_sum(begin, end, [&](std::size_t i) {
-          const float v = p.logw[i];
+          const float v = logw[i];
           return fast_exp(fpower * ((v == v ? v : kNegInf) - shift));  // NaN -> weight 0
         });
       },
       /*join=*/[](double a, double b) { return a + b; });
 }
 
-void fill_uniform(const ParticleView& p, std::size_t grain) {
-  const float logw = -std::log(static_cast<float>(p.size()));
-  par::for_each_chunk(p.size(), grain, [&](std::size_t begin, std::size_t end) {
-    std::fill(p.logw + begin, p.logw + end, logw);
+void fill_uniform(float* logw, std::size_t n, std::size_t grain) {
+  const float uniform = -std::log(static_cast<float>(n));
+  par::for_each_chunk(n, grain, [&](std::size_t begin, std::size_t end) {
+    std::fill(logw + begin, logw + end, uniform);
   });
 }
 
 }  // namespace
 
-NormalizeResult normalize(const ParticleView& p, std::size_t grain) {
+namespace detail {
+
+NormalizeResult normalize_log_weights(float* logw, std::size_t n, std::size_t grain) {
   NormalizeResult r;
-  if (p.size() == 0) return r;
-  const double log_n = std::log(static_cast<double>(p.size()));
-  const float max_logw = max_log_weight(p, grain);
+  if (n == 0) return r;
+  const double log_n = std::log(static_cast<double>(n));
+  const float max_logw = max_log_weight(logw, n, grain);
   if (!std::isfinite(max_logw)) {  // all -inf / NaN, or a +inf weight: no usable information
-    fill_uniform(p, grain);
+    fill_uniform(logw, n, grain);
     constexpr double kNegInfD = -std::numeric_limits<double>::infinity();
-    return {WeightStatus::kDegenerate, kNegInfD, kNegInfD, static_cast<double>(p.size())};
+    return {WeightStatus::kDegenerate, kNegInfD, kNegInfD, static_cast<double>(n)};
   }
-  const double total = sum_exp(p, max_logw, 1);  // >= 1: the max contributes exp(0)
+  const double total = sum_exp(logw, n, max_logw, 1);  // >= 1: the max contributes exp(0)
   const double log_total = static_cast<double>(max_logw) + std::log(total);
   // Subtract in two steps: v - max is exact for nearby values (Sterbenz), and log(total) is a
   // small number with full float precision; rounding log_total itself to float would scale
   // every weight by up to 1 +- 2^-24 |log_total| (3e-5 at log-weights near 1000).
   const auto log_sum = static_cast<float>(std::log(total));
-  par::for_each_chunk(p.size(), grain, [&](std::size_t begin, std::size_t end) {
+  par::for_each_chunk(n, grain, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      const float v = p.logw[i];
-      p.logw[i] = v == v ? (v - max_logw) - log_sum : kNegInf;
+      const float v = logw[i];
+      logw[i] = v == v ? (v - max_logw) - log_sum : kNegInf;
     }
   });
   r.status = WeightStatus::kOk;
   r.log_total = log_total;
   r.log_mean_likelihood = log_total - log_n;
-  r.effective_sample_size = effective_sample_size(p, grain);
+  r.effective_sample_size = log_weights_ess(logw, n);
   return r;
 }
 
+double log_weights_ess(const float* logw, std::size_t n) {
+  if (n == 0) return 0.0;
+  const double sum_sq = sum_exp(logw, n, 0.0F, 2);  // sum of w_i^2 = exp(2 logw_i)
+  return sum_sq > 0.0 ? 1.0 / sum_sq : static_cast<double>(n);
+}
+
+}  // namespace detail
+
+NormalizeResult normalize(const ParticleView& p, std::size_t grain) {
+  return detail::normalize_log_weights(p.logw, p.size(), grain);
+}
+
 double effective_sample_size(const ConstParticleView& p, std::size_t /*grain*/) {
-  if (p.size() == 0) return 0.0;
-  const double sum_sq = sum_exp(p, 0.0F, 2);  // sum of w_i^2 = exp(2 logw_i)
-  return sum_sq > 0.0 ? 1.0 / sum_sq : static_cast<double>(p.size());
+  return detail::log_weights_ess(p.logw, p.size());
 }
 
 }  // namespace mote

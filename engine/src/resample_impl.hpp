@@ -1,0 +1,173 @@
+#pragma once
+// The resampling schemes of resample.hpp as templates over the store they gather, so the pose
+// ParticleStore (resample.cpp) and the generic StateStore (state_store.cpp) share one body per
+// scheme. Internal: not installed. A store adapter S provides
+//   reserve(n)            room for n particles in both buffers
+//   size()                particles in the current buffer
+//   log_weights()         the current, normalized log-weight column
+//   scratch(k)            integer scratch column k (k = 0, 1) of capacity + 1 entries
+//   gather(n_out)         a callable g(i, j) copying current state i into spare slot j
+//   commit(n_out)         make the spare buffer current with n_out uniform weights
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "mote/core/parallel.hpp"
+#include "mote/engine/fast_math.hpp"
+#include "mote/engine/philox.hpp"
+
+namespace mote::detail {
+
+inline constexpr std::uint64_t kOne = std::uint64_t{1} << 32;  // one copy in 32.32 fixed point
+
+// The shared front end of every scheme: the exclusive prefix sum C of q_i = floor(w_i n_out
+// 2^32) in scratch 1, with C[N] = total; q_i = C[i+1] - C[i]. q is computed inside the scan,
+// so no q column is written or read back. Weights must be normalized; q_i <= n_out 2^32 < 2^64.
+struct FixedWeights {
+  const std::uint64_t* c;
+  std::uint64_t total;
+  [[nodiscard]] std::uint64_t q(std::size_t i) const { return c[i + 1] - c[i]; }
+};
+
+template <class S>
+FixedWeights fixed_point_weights(S& store, std::size_t n_out, std::size_t grain) {
+  const float* logw = store.log_weights();
+  const std::size_t n = store.size();
+  std::uint64_t* c = store.scratch(1);
+  const double scale = static_cast<double>(n_out) * static_cast<double>(kOne);
+  const std::uint64_t total = par::exclusive_scan<std::uint64_t>(n, grain, c, [&](std::size_t i) {
+    return static_cast<std::uint64_t>(static_cast<double>(fast_exp(logw[i])) * scale);
+  });
+  c[n] = total;
+  return {c, total};
+}
+
+// The scheme's own fixed-point total may differ from n_out * 2^32 by a few units; a position
+// at or past the total belongs to the last particle with positive weight.
+inline std::size_t ancestor_of(const FixedWeights& fw, std::size_t n, std::uint64_t pos) {
+  pos = std::min(pos, fw.total - 1);
+  return static_cast<std::size_t>(std::upper_bound(fw.c, fw.c + n, pos) - fw.c) - 1;
+}
+
+inline std::uint64_t comb_offset(std::uint64_t seed, std::uint64_t step) {
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  return rng.block(0)[0];  // U in [0, 2^32): the one uniform of systematic resampling
+}
+
+// Comb tooth j sits at j 2^32 + u; past the total it belongs to the last weighted particle.
+inline std::uint64_t tooth(std::size_t j, std::uint64_t u, const FixedWeights& fw) {
+  return std::min(j * kOne + u, fw.total - 1);
+}
+
+// Fallback when every q_i rounded to 0 (not normalized, or n_out == 0): spread evenly.
+template <class S>
+bool resample_empty_total(S& store, std::size_t n_out, const FixedWeights& fw) {
+  if (fw.total != 0 && n_out != 0) return false;
+  const std::size_t n = store.size();
+  const auto gather = store.gather(n_out);
+  for (std::size_t j = 0; j < n_out && n > 0; ++j) gather(j * n / n_out, j);
+  store.commit(n_out);
+  return true;
+}
+
+template <class S>
+void systematic(S& store, std::size_t n_out, std::uint64_t seed, std::uint64_t step,
+                std::size_t grain) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, grain);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const std::uint64_t u = comb_offset(seed, step);
+  const std::size_t n = store.size();
+  const auto gather = store.gather(n_out);
+  // Parallel over chunks of outputs: each chunk finds the ancestor of its first tooth by binary
+  // search (the largest i with C_i <= tooth), then walks the pointer like the serial sampler.
+  // Both give the same i for every tooth, so the result is the serial one exactly.
+  par::for_each_chunk(n_out, grain, [&](std::size_t begin, std::size_t end) {
+    std::size_t i = ancestor_of(fw, n, tooth(begin, u, fw));
+    for (std::size_t j = begin; j < end; ++j) {
+      const std::uint64_t pos = tooth(j, u, fw);
+      while (fw.c[i + 1] <= pos) ++i;
+      gather(i, j);
+    }
+  });
+  store.commit(n_out);
+}
+
+template <class S>
+void systematic_serial(S& store, std::size_t n_out, std::uint64_t seed, std::uint64_t step) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, store.size() + 1);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const std::uint64_t u = comb_offset(seed, step);
+  const auto gather = store.gather(n_out);
+  std::size_t i = 0;
+  for (std::size_t j = 0; j < n_out; ++j) {
+    const std::uint64_t pos = std::min(j * kOne + u, fw.total - 1);  // the comb tooth
+    while (fw.c[i + 1] <= pos) ++i;  // Thrun table 4.4, lines 7-9 (c[N] = total > pos)
+    gather(i, j);
+  }
+  store.commit(n_out);
+}
+
+// Output j copies the particle whose fixed-point interval holds position(fw, j); the shared
+// body of the independent-draw baselines (multinomial, stratified).
+template <class S, class Position>
+void by_position(S& store, std::size_t n_out, std::size_t grain, const Position& position) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, grain);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const std::size_t n = store.size();
+  const auto gather = store.gather(n_out);
+  par::for_each_chunk(n_out, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j) gather(ancestor_of(fw, n, position(fw, j)), j);
+  });
+  store.commit(n_out);
+}
+
+template <class S>
+void multinomial(S& store, std::size_t n_out, std::uint64_t seed, std::uint64_t step,
+                 std::size_t grain) {
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  by_position(store, n_out, grain, [&](const FixedWeights& fw, std::size_t j) {
+    const double uj = rng.uniform_double(static_cast<std::uint32_t>(j), 1);
+    return static_cast<std::uint64_t>(uj * static_cast<double>(fw.total));
+  });
+}
+
+template <class S>
+void stratified(S& store, std::size_t n_out, std::uint64_t seed, std::uint64_t step,
+                std::size_t grain) {
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  by_position(store, n_out, grain, [&](const FixedWeights&, std::size_t j) {
+    return j * kOne + rng.block(static_cast<std::uint32_t>(j), 2)[0];
+  });
+}
+
+template <class S>
+void residual(S& store, std::size_t n_out, std::uint64_t seed, std::uint64_t step) {
+  store.reserve(n_out);
+  const FixedWeights fw = fixed_point_weights(store, n_out, store.size() + 1);
+  if (resample_empty_total(store, n_out, fw)) return;
+  const std::size_t n = store.size();
+  const auto gather = store.gather(n_out);
+  std::size_t j = 0;
+  std::uint64_t residual_total = 0;
+  std::uint64_t* rest_c = store.scratch(0);  // residual prefix sums beside C
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::uint64_t k = 0; k < (fw.q(i) >> 32) && j < n_out; ++k) gather(i, j++);
+    rest_c[i] = residual_total;
+    residual_total += fw.q(i) & (kOne - 1);
+  }
+  rest_c[n] = residual_total;
+  const FixedWeights rest{rest_c, residual_total};
+  const RngStream rng{seed, step, RngPurpose::kResample};
+  for (; j < n_out; ++j) {
+    const double uj = rng.uniform_double(static_cast<std::uint32_t>(j), 3);
+    const auto pos = static_cast<std::uint64_t>(uj * static_cast<double>(residual_total));
+    gather(residual_total == 0 ? n - 1 : ancestor_of(rest, n, pos), j);
+  }
+  store.commit(n_out);
+}
+
+}  // namespace mote::detail
