@@ -15,38 +15,52 @@
 namespace mote::detail {
 
 struct BinCoord {
-  std::int64_t x, y, t;
+  std::int32_t x, y, t;
 };
 
-// Maps poses to (x, y, theta) bins of a ClusterConfig and bins to 64-bit keys.
+// Maps poses to (x, y, theta) bins of a ClusterConfig and bins to 64-bit keys. Float math,
+// branch-free: the summarizer's loop over every particle vectorizes.
 class BinIndex {
  public:
   explicit BinIndex(const ClusterConfig& c)
-      : inv_x_(1.0 / c.bin_x),
-        inv_y_(1.0 / c.bin_y),
-        inv_t_(1.0 / c.bin_theta),
+      : inv_x_(static_cast<float>(1.0 / c.bin_x)),
+        inv_y_(static_cast<float>(1.0 / c.bin_y)),
+        inv_t_(static_cast<float>(1.0 / c.bin_theta)),
         nt_(c.connectivity == Connectivity::k8
                 ? 1
-                : static_cast<std::int64_t>(std::ceil(2.0 * std::numbers::pi / c.bin_theta))) {}
+                : static_cast<std::int32_t>(std::ceil(2.0 * std::numbers::pi / c.bin_theta))) {}
 
-  // theta in (-pi, pi] (the store's invariant); other values are wrapped first.
-  [[nodiscard]] BinCoord coord(double x, double y, double theta) const {
-    if (!(theta > -std::numbers::pi && theta <= std::numbers::pi)) theta = wrap_angle(theta);
-    const auto t = static_cast<std::int64_t>(std::floor((theta + std::numbers::pi) * inv_t_));
-    return {static_cast<std::int64_t>(std::floor(x * inv_x_)),
-            static_cast<std::int64_t>(std::floor(y * inv_y_)), nt_ == 1 ? 0 : t % nt_};
+  // Any theta is wrapped into [0, nt) bins; coordinates are clamped to +-8e6 bins (NaN to the
+  // lower bound) so the casts are defined.
+  [[nodiscard]] BinCoord coord(float x, float y, float theta) const {
+    constexpr float kPi = std::numbers::pi_v<float>;
+    const auto nt = static_cast<float>(nt_);
+    float t = std::floor(bounded((theta + kPi) * inv_t_));
+    t -= nt * std::floor(t / nt);
+    return {static_cast<std::int32_t>(std::floor(bounded(x * inv_x_))),
+            static_cast<std::int32_t>(std::floor(bounded(y * inv_y_))),
+            static_cast<std::int32_t>(t)};
   }
   // 24 bits each for x and y (+-8M bins), 16 for theta.
   [[nodiscard]] static std::uint64_t key(const BinCoord& b) {
-    constexpr std::uint64_t kMask = (std::uint64_t{1} << 24) - 1;
-    return ((static_cast<std::uint64_t>(b.x) & kMask) << 40) |
-           ((static_cast<std::uint64_t>(b.y) & kMask) << 16) | static_cast<std::uint64_t>(b.t);
+    constexpr std::uint32_t kMask = (std::uint32_t{1} << 24) - 1;
+    return (std::uint64_t{static_cast<std::uint32_t>(b.x) & kMask} << 40) |
+           (std::uint64_t{static_cast<std::uint32_t>(b.y) & kMask} << 16) |
+           static_cast<std::uint32_t>(b.t);
   }
-  [[nodiscard]] std::int64_t theta_bins() const { return nt_; }
+  [[nodiscard]] std::uint64_t key_of(float x, float y, float theta) const {
+    return key(coord(x, y, theta));
+  }
+  [[nodiscard]] std::int32_t theta_bins() const { return nt_; }
 
  private:
-  double inv_x_, inv_y_, inv_t_;
-  std::int64_t nt_;
+  [[nodiscard]] static float bounded(float v) {
+    constexpr float kLimit = 8.0e6F;
+    return v > -kLimit ? (v < kLimit ? v : kLimit) : -kLimit;
+  }
+
+  float inv_x_, inv_y_, inv_t_;
+  std::int32_t nt_;
 };
 
 // Bin key -> bin number, numbers handed out in order of first insertion. Linear probing in a

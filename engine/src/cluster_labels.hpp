@@ -12,6 +12,6 @@ namespace mote::detail {
 // wrapping around after nt bins (nt = 1: 8-connectivity in x, y). Bin i is bins[i], numbered as
 // in id_of; clusters are numbered in order of their lowest bin.
 [[nodiscard]] std::vector<std::uint32_t> label_bins(const std::vector<BinCoord>& bins,
-                                                    const BinMap& id_of, std::int64_t nt);
+                                                    const BinMap& id_of, std::int32_t nt);
 
 }  // namespace mote::detail

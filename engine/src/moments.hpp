@@ -38,12 +38,16 @@ struct FirstMoments {
   }
 };
 
-// theta - mean wrapped to (-pi, pi]; one conditional step when both are wrapped already.
+// theta - mean wrapped to (-pi, pi] for theta and mean within [-3 pi, 3 pi] (the store keeps
+// headings in (-pi, pi]); branch-free so that loops calling it vectorize.
 [[nodiscard]] inline double heading_residual(double theta, double mean) {
+  constexpr double kPi = std::numbers::pi;
   double d = theta - mean;
-  if (d > std::numbers::pi) d -= 2 * std::numbers::pi;
-  if (d <= -std::numbers::pi) d += 2 * std::numbers::pi;
-  return d > -std::numbers::pi && d <= std::numbers::pi ? d : wrap_angle(d);
+  for (int step = 0; step < 2; ++step) {
+    d = d > kPi ? d - 2 * kPi : d;
+    d = d <= -kPi ? d + 2 * kPi : d;
+  }
+  return d;
 }
 
 // Sums of w r r^T for residuals r = (dx, dy, wrapped dtheta): the 6 upper-triangle entries.

@@ -8,6 +8,7 @@
 // Sums run over a fixed block grid, so every result is bit-identical for any thread count.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -43,9 +44,81 @@ float max_log_weight(const ConstParticleView& p) {
       /*join=*/[](float a, float b) { return std::max(a, b); });
 }
 
-// Weight relative to the largest, so an unnormalized set does not overflow; NaN weighs 0.
+// Weight relative to the largest, so an unnormalized set does not overflow; NaN weighs 0
+// (fast_exp(-inf) is exactly 0). A select on the argument, not a branch: the loop vectorizes.
 float relative_weight(float logw, float max_logw) {
-  return logw == logw ? fast_exp(logw - max_logw) : 0.0F;
+  return fast_exp(logw == logw ? logw - max_logw : -std::numeric_limits<float>::infinity());
+}
+
+// Per-block sums in kLanes independent accumulators (lane j takes particles begin + j,
+// begin + j + kLanes, ...), added up in lane order at the end: a fixed order, so the same for any
+// thread count, and one the compiler can vectorize (a single running sum cannot be reordered).
+constexpr std::size_t kLanes = 16;
+
+template <std::size_t kSums, class Terms>
+std::array<double, kSums> lane_sums(std::size_t count, const Terms& terms) {
+  double acc[kSums][kLanes] = {};
+  std::size_t k = 0;
+  for (; k + kLanes <= count; k += kLanes) {
+    for (std::size_t j = 0; j < kLanes; ++j) terms(k + j, acc, j);
+  }
+  for (; k < count; ++k) terms(k, acc, k % kLanes);
+  std::array<double, kSums> total{};
+  for (std::size_t q = 0; q < kSums; ++q) {
+    for (std::size_t j = 0; j < kLanes; ++j) total[q] += acc[q][j];
+  }
+  return total;
+}
+
+// First moments of particles [begin, end) (end - begin <= kSumBlock) with weights w.
+FirstMoments first_moments(const ConstParticleView& p, const float* w, std::size_t begin,
+                           std::size_t end) {
+  alignas(64) float cos_t[kSumBlock];
+  alignas(64) float sin_t[kSumBlock];
+  const std::size_t count = end - begin;
+  for (std::size_t k = 0; k < count; ++k) {
+    const SinCos sc = fast_sin_cos(p.theta[begin + k]);
+    cos_t[k] = sc.cos;
+    sin_t[k] = sc.sin;
+  }
+  const float* x = p.x + begin;
+  const float* y = p.y + begin;
+  const float* wb = w + begin;
+  FirstMoments m;
+  m.s = lane_sums<5>(count, [&](std::size_t k, double(&acc)[5][kLanes], std::size_t j) {
+    const double wk = wb[k];
+    acc[0][j] += wk;
+    acc[1][j] += wk * x[k];
+    acc[2][j] += wk * y[k];
+    acc[3][j] += wk * cos_t[k];
+    acc[4][j] += wk * sin_t[k];
+  });
+  m.count = count;
+  if (count > 0) m.first = p.pose(begin);
+  return m;
+}
+
+// Second moments about `mean` of particles [begin, end) with weights w.
+SecondMoments second_moments(const ConstParticleView& p, const float* w, const Pose2& mean,
+                             std::size_t begin, std::size_t end) {
+  const float* x = p.x + begin;
+  const float* y = p.y + begin;
+  const float* theta = p.theta + begin;
+  const float* wb = w + begin;
+  SecondMoments m;
+  m.s = lane_sums<6>(end - begin, [&](std::size_t k, double(&acc)[6][kLanes], std::size_t j) {
+    const double wk = wb[k];
+    const double dx = x[k] - mean.x;
+    const double dy = y[k] - mean.y;
+    const double dt = detail::heading_residual(theta[k], mean.theta);
+    acc[0][j] += wk * dx * dx;
+    acc[1][j] += wk * dx * dy;
+    acc[2][j] += wk * dx * dt;
+    acc[3][j] += wk * dy * dy;
+    acc[4][j] += wk * dy * dt;
+    acc[5][j] += wk * dt * dt;
+  });
+  return m;
 }
 
 template <class Moments>
@@ -83,18 +156,19 @@ FirstMoments PoseSummarizer::State::weigh_and_key(const ConstParticleView& p, fl
       p.size(), kSumBlock, FirstMoments{},
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
-        FirstMoments m;
-        for (std::size_t i = begin; i < end; ++i) {
-          weight[i] = relative_weight(p.logw[i], max_logw);
-          const SinCos sc = fast_sin_cos(p.theta[i]);
-          m.add(weight[i], p.x[i], p.y[i], sc.cos, sc.sin, p.theta[i]);
-        }
+        for (std::size_t i = begin; i < end; ++i) weight[i] = relative_weight(p.logw[i], max_logw);
         if (with_keys) {
+          // Locals: a store through the uint64 key column could alias the index's int64 fields.
+          const detail::BinIndex bin_index = index;
+          std::uint64_t* keys = key.data();
+          const float* x = p.x;
+          const float* y = p.y;
+          const float* theta = p.theta;
           for (std::size_t i = begin; i < end; ++i) {
-            key[i] = detail::BinIndex::key(index.coord(p.x[i], p.y[i], p.theta[i]));
+            keys[i] = bin_index.key_of(x[i], y[i], theta[i]);
           }
         }
-        return m;
+        return first_moments(p, weight.data(), begin, end);
       },
       /*join=*/[](const FirstMoments& a, const FirstMoments& b) { return a + b; });
 }
@@ -150,11 +224,7 @@ SecondMoments PoseSummarizer::State::overall_second(const ConstParticleView& p) 
       p.size(), kSumBlock, SecondMoments{},
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
-        SecondMoments m;
-        for (std::size_t i = begin; i < end; ++i) {
-          m.add(weight[i], out.overall.mean, p.x[i], p.y[i], p.theta[i]);
-        }
-        return m;
+        return second_moments(p, weight.data(), out.overall.mean, begin, end);
       },
       /*join=*/[](const SecondMoments& a, const SecondMoments& b) { return a + b; });
 }
