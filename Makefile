@@ -4,6 +4,7 @@
 BUILD       ?= build
 JOBS        ?= $(shell nproc)
 CMAKE_FLAGS ?=
+FUZZ_SECONDS ?= 30
 
 .PHONY: all deps configure build run test bench fuzz clean
 
@@ -23,6 +24,41 @@ run: build
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# `make bench`: a Release build with -march=native in build-bench/, every benchmark suite with
+# medians of 3 repetitions into bench/results/<suite>.json, then bench/plot.py writes the
+# end-to-end table (e2e.md) and plot (e2e.png). BENCH_FILTER (a regex) runs a subset.
+BENCH_BUILD  ?= build-bench
+BENCH_SUITES ?= bench_e2e bench_engine bench_maps bench_raycast
+BENCH_FILTER ?= .
+BENCH_REPS   ?= 3
+BENCH_OUT    := bench/results
+# The Debian interpreter, which python3-matplotlib (scripts/install-deps) installs into.
+BENCH_PYTHON ?= $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
+
+bench: deps
+	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DMOTE_NATIVE=ON $(CMAKE_FLAGS)
+	cmake --build $(BENCH_BUILD) -j $(JOBS) --target $(BENCH_SUITES)
+	mkdir -p $(BENCH_OUT)
+	uptime > $(BENCH_OUT)/uptime.txt
+	set -e; for suite in $(BENCH_SUITES); do \
+	  rm -f $(BENCH_OUT)/$$suite.json; \
+	  exe=$$(find $(BENCH_BUILD)/bench -name $$suite -type f -perm -u+x | head -n 1); \
+	  $$exe --benchmark_filter='$(BENCH_FILTER)' \
+	    --benchmark_repetitions=$(BENCH_REPS) --benchmark_report_aggregates_only=true \
+	    --benchmark_out=$(BENCH_OUT)/$$suite.json --benchmark_out_format=json; \
+	done
+	uptime >> $(BENCH_OUT)/uptime.txt
+	$(BENCH_PYTHON) bench/plot.py $(BENCH_OUT)
+
+# Every reader's libFuzzer target for FUZZ_SECONDS each, under ASan + UBSan, in build-fuzz (clang);
+# fails on any finding. The corpus grows in build-fuzz/fuzz-corpus between runs.
+fuzz: deps
+	cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	  -DMOTE_BUILD_FUZZERS=ON -DMOTE_BUILD_TESTS=OFF -DMOTE_BUILD_BENCH=OFF \
+	  -DMOTE_BUILD_EXAMPLES=OFF -DMOTE_BUILD_TOOL=OFF -DMOTE_NATIVE=OFF $(CMAKE_FLAGS)
+	cmake --build build-fuzz -j $(JOBS)
+	tests/fuzz/run-fuzzers build-fuzz $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD)

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "e2e_cases.hpp"
+#include "e2e_machine.hpp"
 #include "e2e_world.hpp"
 #include "mote/engine/localizer.hpp"
 #include "mote/engine/particles.hpp"
@@ -170,11 +171,13 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::AddCustomContext("map", mote::bench::world().map_name);
+  mote::bench::register_machine_check("start");
   for (const mote::bench::Case& c : mote::bench::all_cases()) {
     benchmark::RegisterBenchmark(c.name().c_str(), mote::bench::BM_Localizer_Update, c)
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }
+  mote::bench::register_machine_check("end");
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -1,0 +1,215 @@
+#!/usr/bin/env python3
+"""Turns bench/results/bench_e2e.json (Google Benchmark JSON) into the results table e2e.md and
+the plot e2e.png that BENCHMARKS.md shows.
+
+Usage: bench/plot.py [RESULTS_DIR]   (default: bench/results next to this script)
+
+Medians are used when the run had repetitions (--benchmark_repetitions=N with aggregates);
+a run without repetitions is tabled from its single measurements and says so.
+"""
+
+import json
+import os
+import re
+import sys
+from pathlib import Path
+
+NAME = re.compile(
+    r"BM_Localizer_Update/(?P<model>[a-z_]+)/(?P<setting>[a-z]+)/n:(?P<n>\d+)"
+    r"/beams:(?P<beams>\d+)/threads:(?P<threads>\d+)")
+
+MACHINE = re.compile(r"BM_Machine_ComputeLoop/(?P<when>[a-z]+)/threads:(?P<threads>\d+)")
+
+MODELS = {"likelihood_field": "likelihood field", "beam": "beam model"}
+COLORS = {"likelihood_field": "tab:blue", "beam": "tab:red"}
+
+# The targets of issue 7, for 2 threads.
+LF_100K_TRACKING_MS = 8.0
+LF_1M_MS = 66.0  # 15 Hz
+BEAM_10K_RAYS_PER_S = 20e6
+MIN_SPEEDUP = 1.8
+
+
+def load_cases(path):
+    """The run's context, {(model, setting, n, beams, threads): entry}, {(when, threads): entry}
+    for the machine check, and whether the entries are medians."""
+    data = json.loads(path.read_text())
+    entries = data.get("benchmarks", [])
+    medians = [e for e in entries if e.get("aggregate_name") == "median"]
+    chosen = medians if medians else [e for e in entries if e.get("run_type") == "iteration"]
+    cases, machine = {}, {}
+    for e in chosen:
+        name = e.get("run_name", e["name"])
+        if e.get("error_occurred"):
+            continue
+        if (m := NAME.match(name)) is not None:
+            key = (m["model"], m["setting"], int(m["n"]), int(m["beams"]), int(m["threads"]))
+            cases[key] = e
+        elif (m := MACHINE.match(name)) is not None:
+            machine[(m["when"], int(m["threads"]))] = e
+    return data.get("context", {}), cases, machine, bool(medians)
+
+
+def ms(entry):
+    """Real time of one update in ms, whatever unit the run reported in."""
+    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[entry.get("time_unit", "ns")]
+    return entry["real_time"] * scale
+
+
+def si(value):
+    for factor, suffix in ((1e9, " G"), (1e6, " M"), (1e3, " k")):
+        if value >= factor:
+            return f"{value / factor:.3g}{suffix}"
+    return f"{value:.3g}"
+
+
+def verdict(ok):
+    return "met" if ok else "**not met**"
+
+
+def cpu_model():
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return "unknown CPU"
+
+
+def targets_for(key, cases):
+    """The issue 7 targets that apply to one row, as text."""
+    model, setting, n, beams, threads = key
+    two = cases.get((model, setting, n, beams, 2))
+    one = cases.get((model, setting, n, beams, 1))
+    out = []
+    if two is not None and beams == 60:
+        if model == "likelihood_field" and n == 100_000 and setting == "tracking":
+            out.append(f"< {LF_100K_TRACKING_MS:g} ms: {verdict(ms(two) < LF_100K_TRACKING_MS)}")
+        if model == "likelihood_field" and n == 1_000_000:
+            out.append(f"< {LF_1M_MS:g} ms: {verdict(ms(two) < LF_1M_MS)}")
+        if model == "beam" and n == 10_000:
+            rays = two.get("rays/s", 0.0)
+            out.append(f"> 20 M rays/s: {verdict(rays > BEAM_10K_RAYS_PER_S)}")
+    if one is not None and two is not None and n > 10_000:
+        out.append(f"2t/1t >= {MIN_SPEEDUP}: {verdict(ms(one) / ms(two) >= MIN_SPEEDUP)}")
+    return "; ".join(out)
+
+
+def rows(cases):
+    keys = sorted({k[:4] for k in cases},
+                  key=lambda k: (list(MODELS).index(k[0]), k[1] != "tracking", k[2], k[3]))
+    lines = [
+        "| model | setting | particles | beams | ms/update 1t | ms/update 2t | updates/s 2t "
+        "| particle-beams/s 2t | 2t/1t | target (2 threads) |",
+        "|---|---|--:|--:|--:|--:|--:|--:|--:|---|",
+    ]
+    for model, setting, n, beams in keys:
+        one = cases.get((model, setting, n, beams, 1))
+        two = cases.get((model, setting, n, beams, 2))
+        ratio = f"{ms(one) / ms(two):.2f}" if one and two else "-"
+        lines.append(
+            f"| {MODELS[model]} | {setting} | {n:,} | {beams} "
+            f"| {f'{ms(one):.3g}' if one else '-'} | {f'{ms(two):.3g}' if two else '-'} "
+            f"| {si(two['updates/s']) if two else '-'} "
+            f"| {si(two['particle_beams/s']) if two else '-'} | {ratio} "
+            f"| {targets_for((model, setting, n, beams, 2), cases)} |")
+    return lines
+
+
+def phase_rows(cases):
+    """ns per particle per phase, tracking, 60 beams, 2 threads."""
+    phases = ["motion", "sensor", "normalize", "resample", "estimate"]
+    lines = ["| model | particles | " + " | ".join(phases) + " | bytes/particle |",
+             "|---|--:|" + "--:|" * len(phases) + "--:|"]
+    for (model, setting, n, beams, threads), e in sorted(
+            cases.items(), key=lambda kv: (list(MODELS).index(kv[0][0]), kv[0][2])):
+        if setting != "tracking" or beams != 60 or threads != 2:
+            continue
+        values = " | ".join(f"{e[f'ns_{p}/p']:.3g}" for p in phases)
+        lines.append(f"| {MODELS[model]} | {n:,} | {values} | {e['bytes/p']:.1f} |")
+    return lines
+
+
+def machine_lines(context, results, medians):
+    uptime = results / "uptime.txt"
+    load = uptime.read_text().strip().splitlines() if uptime.exists() else []
+    lines = [
+        f"- CPU: {cpu_model()}, {context.get('num_cpus', os.cpu_count())} cores "
+        f"({context.get('mhz_per_cpu', '?')} MHz)",
+        f"- map: {context.get('map', '?')}; run {context.get('date', '?')}",
+        "- `uptime` before and after the run:" if load else "- `uptime`: not recorded",
+    ]
+    lines += [f"  - `{line.strip()}`" for line in load]
+    lines.append("- values: " + ("medians of the repetitions" if medians
+                                 else "single measurements (no repetitions)"))
+    return lines
+
+
+def machine_check(machine):
+    """The compute loop's 2-thread/1-thread ratio at the start and end of the run."""
+    ratios = [f"{ms(machine[(when, 1)]) / ms(machine[(when, 2)]):.2f} at the {when}"
+              for when in ("start", "end") if (when, 1) in machine and (when, 2) in machine]
+    if not ratios:
+        return []
+    return [f"- machine check (BM_Machine_ComputeLoop, pure compute, 2 threads / 1 thread): "
+            f"{', '.join(ratios)}. Below 2, other processes held a core, and no case's 2t/1t "
+            f"ratio can exceed what the machine gave."]
+
+
+def write_table(path, context, cases, machine, medians, results):
+    text = ["# End-to-end Localizer update (bench_e2e)", ""]
+    text += machine_lines(context, results, medians)
+    text += machine_check(machine)
+    text += ["", "One full update (motion, sensor, normalize, resample, estimate) per iteration, "
+             "real time. 1t / 2t: the Localizer's thread option.", ""]
+    text += rows(cases)
+    phases = phase_rows(cases)
+    if len(phases) > 2:
+        text += ["", "## ns per particle per phase (tracking, 60 beams, 2 threads)", ""] + phases
+    path.write_text("\n".join(text) + "\n")
+
+
+def write_plot(path, cases):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for model in MODELS:
+        for threads, style in ((1, "--"), (2, "-")):
+            points = sorted((k[2], ms(e)) for k, e in cases.items()
+                            if k[0] == model and k[1] == "tracking" and k[3] == 60
+                            and k[4] == threads)
+            if points:
+                ax.plot([p[0] for p in points], [p[1] for p in points], style, marker="o",
+                        color=COLORS[model],
+                        label=f"{MODELS[model]}, {threads} thread{'s' if threads > 1 else ''}")
+    ax.axhline(LF_1M_MS, color="grey", linewidth=0.8, linestyle=":")
+    ax.text(1e3, LF_1M_MS * 1.1, "66 ms (15 Hz)", color="grey", fontsize=8)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("particles")
+    ax.set_ylabel("ms per update (median)")
+    ax.set_title("Localizer update, tracking, 60 beams")
+    ax.grid(True, which="both", linewidth=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main():
+    results = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).parent / "results"
+    source = results / "bench_e2e.json"
+    if not source.exists():
+        sys.exit(f"plot.py: {source}: not found (run `make bench` first)")
+    context, cases, machine, medians = load_cases(source)
+    if not cases:
+        sys.exit(f"plot.py: {source}: no BM_Localizer_Update results (BENCH_FILTER?)")
+    write_table(results / "e2e.md", context, cases, machine, medians, results)
+    write_plot(results / "e2e.png", cases)
+    print(f"plot.py: wrote {results / 'e2e.md'} and {results / 'e2e.png'}")
+
+
+if __name__ == "__main__":
+    main()
