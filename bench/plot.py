@@ -11,6 +11,7 @@ a run without repetitions is tabled from its single measurements and says so.
 import json
 import os
 import re
+import subprocess
 import sys
 from pathlib import Path
 
@@ -131,13 +132,24 @@ def phase_rows(cases):
     return lines
 
 
+def source_version():
+    """The commit the benchmarked tree was at, "-dirty" when it had uncommitted changes."""
+    try:
+        out = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
+                             text=True, cwd=Path(__file__).parent, check=True)
+        return out.stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
 def machine_lines(context, results, medians):
     uptime = results / "uptime.txt"
     load = uptime.read_text().strip().splitlines() if uptime.exists() else []
     lines = [
         f"- CPU: {cpu_model()}, {context.get('num_cpus', os.cpu_count())} cores "
         f"({context.get('mhz_per_cpu', '?')} MHz)",
-        f"- map: {context.get('map', '?')}; run {context.get('date', '?')}",
+        f"- map: {context.get('map', '?')}; run {context.get('date', '?')} "
+        f"on mote {source_version()}",
         "- `uptime` before and after the run:" if load else "- `uptime`: not recorded",
     ]
     lines += [f"  - `{line.strip()}`" for line in load]

@@ -46,7 +46,7 @@ struct FilterSlot {
   std::uint64_t k = 0;
 };
 
-Localizer& filter_for(FilterSlot& slot, const Case& c) {
+void use_filter(FilterSlot& slot, const Case& c) {
   if (!slot.filter || slot.model != c.model || slot.particles != c.particles ||
       slot.threads != c.threads) {
     slot.filter.reset();  // free the old particle set before allocating the new one
@@ -57,7 +57,6 @@ Localizer& filter_for(FilterSlot& slot, const Case& c) {
     slot.tracking = false;
     slot.k = 0;
   }
-  return *slot.filter;
 }
 
 // Particles around the true pose (0.1 m, 3 degrees), then the first scan: the state a tracking
@@ -149,7 +148,7 @@ void set_counters(benchmark::State& state, const Case& c, const Totals& t) {
 
 void BM_Localizer_Update(benchmark::State& state, const Case& c) {
   static FilterSlot slot;
-  filter_for(slot, c);
+  use_filter(slot, c);
   Totals totals;
   if (c.setting == Setting::kTracking) {
     run_tracking(state, slot, c, totals);

@@ -3,6 +3,7 @@
 /// The case matrix of the end-to-end benchmark: sensor model x particles x beams x threads x
 /// setting, named so the results table can be rebuilt from the benchmark names alone.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
