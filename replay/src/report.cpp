@@ -10,6 +10,7 @@
 
 #include "mote/core/error.hpp"
 #include "mote/replay/map_image.hpp"
+#include "mote/replay/profile.hpp"
 #include "mote/replay/report_json.hpp"
 
 namespace mote::replay {
@@ -84,6 +85,16 @@ std::string str(const T& v, int precision = 3) {
   return s.str();
 }
 
+// One line per phase: share of the update, p50 / p99 ms, ns per particle.
+void print_profile(std::ostream& out, const RunProfile& profile) {
+  for (const PhaseProfile& p : profile.phases) {
+    const std::string name = "  " + std::string(p.name);
+    row(out, name.c_str(),
+        str(100.0 * p.share, 1) + " %, p50 " + str(p.ms.p50) + " / p99 " + str(p.ms.p99) + " ms, " +
+            str(p.ns_per_particle, 1) + " ns/particle");
+  }
+}
+
 }  // namespace
 
 RunFigures run_figures(const ReplayResult& result) {
@@ -108,7 +119,8 @@ RunFigures run_figures(const ReplayResult& result) {
   return f;
 }
 
-void write_report_json(std::ostream& out, const ReplayResult& result) {
+void write_report_json(std::ostream& out, const ReplayResult& result,
+                       const ReportOptions& options) {
   const RunFigures f = run_figures(result);
   JsonWriter json(out);
   json.begin_object();
@@ -124,10 +136,11 @@ void write_report_json(std::ostream& out, const ReplayResult& result) {
   write_timing(json, f);
   write_outcomes(json, result);
   write_errors(json, result);
+  if (options.profile) write_profile_json(json, profile_run(result));
   json.end_object();
 }
 
-void print_summary(std::ostream& out, const ReplayResult& result) {
+void print_summary(std::ostream& out, const ReplayResult& result, const ReportOptions& options) {
   const RunFigures f = run_figures(result);
   out << "mote replay summary\n";
   row(out, "scans / updates", std::to_string(result.scans) + " / " + std::to_string(f.updates));
@@ -137,6 +150,7 @@ void print_summary(std::ostream& out, const ReplayResult& result) {
   row(out, "update ms", format_ms(f.update_ms));
   row(out, "particle-beams/s", str(f.particle_beams_per_s / 1e6, 1) + " M");
   row(out, "skipped records", std::to_string(result.reader.records_skipped));
+  if (options.profile) print_profile(out, profile_run(result));
   if (!result.errors) return;
   const TrajectoryErrors& e = *result.errors;
   row(out, "matched poses", std::to_string(e.matched));
@@ -145,13 +159,19 @@ void print_summary(std::ostream& out, const ReplayResult& result) {
   row(out, "converged", e.converged_at_s ? "yes, at " + str(*e.converged_at_s, 1) + " s" : "no");
 }
 
-void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result) {
+void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,
+                          const ReportOptions& options) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir.string() + ": cannot create output folder: " + ec.message());
   std::ofstream json(dir / "report.json");
-  write_report_json(json, result);
+  write_report_json(json, result, options);
   if (!json.good()) throw Error((dir / "report.json").string() + ": cannot write");
+  if (options.profile) {
+    std::ofstream folded(dir / "profile.folded");
+    write_folded_stacks(folded, profile_run(result));
+    if (!folded.good()) throw Error((dir / "profile.folded").string() + ": cannot write");
+  }
   write_tum(dir / "trajectory.tum", result.trajectory);
   MapOverlay overlay{result.reference, result.trajectory, result.final_particles};
   write_map_png(dir / "map.png", result.map, overlay);

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "mote/replay/replay_run.hpp"
+#include "mote/replay/report.hpp"
 
 namespace mote::tool {
 
@@ -19,6 +20,7 @@ int run_command(std::span<char* const> args);
 /// Runs a replay with a progress bar on stderr (when it is a terminal), writes the outputs into
 /// out_dir and prints the summary table on stdout. Returns the replay's result.
 replay::ReplayResult replay_and_report(replay::ReplayOptions options,
-                                       const std::filesystem::path& out_dir);
+                                       const std::filesystem::path& out_dir,
+                                       const replay::ReportOptions& report = {});
 
 }  // namespace mote::tool

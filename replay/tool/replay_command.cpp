@@ -11,7 +11,7 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 16> kFlags{{
+constexpr std::array<FlagSpec, 17> kFlags{{
     {"map", "MAP.yaml", "map_server map (required)"},
     {"log", "LOG", "recorded log: CARMEN .clf/.log or ROS 1 .bag (required)"},
     {"out", "DIR", "output folder, created if missing (required)"},
@@ -28,6 +28,9 @@ constexpr std::array<FlagSpec, 16> kFlags{{
     {"init-pose", "X,Y,THETA", "start around this pose (m, m, rad), 0.1 m / 5 deg std"},
     {"lenient", "", "skip malformed log records (counted in the report) instead of failing"},
     {"quiet", "", "no summary table on stdout"},
+    {"profile", "",
+     "per-phase timing: percentiles and histograms in report.json, DIR/profile.folded (folded "
+     "stacks, microseconds, for flamegraph.pl or speedscope) and a phase table"},
 }};
 
 constexpr std::string_view kUsage =
@@ -114,11 +117,12 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
 }  // namespace
 
 replay::ReplayResult replay_and_report(replay::ReplayOptions options,
-                                       const std::filesystem::path& out_dir) {
+                                       const std::filesystem::path& out_dir,
+                                       const replay::ReportOptions& report) {
   options.progress = make_progress(options.log, options.reader);
   replay::ReplayResult result = replay::run_replay(options);
   finish_progress(options.progress);
-  replay::write_replay_outputs(out_dir, result);
+  replay::write_replay_outputs(out_dir, result, report);
   return result;
 }
 
@@ -129,9 +133,10 @@ int replay_command(std::span<char* const> words) {
     return 0;
   }
   const std::filesystem::path out = args.required("out");
-  const replay::ReplayResult result = replay_and_report(replay_options(args), out);
+  const replay::ReportOptions report{.profile = args.has("profile")};
+  const replay::ReplayResult result = replay_and_report(replay_options(args), out, report);
   if (!args.has("quiet")) {
-    replay::print_summary(std::cout, result);
+    replay::print_summary(std::cout, result, report);
     std::cout << "  outputs               " << out.string() << '\n';
   }
   return 0;

@@ -120,9 +120,11 @@ TEST(Cli, SimulateThenReplayWritesTheOutputs) {
   const Outcome o =
       mote("replay --map '" + map.string() + "' --log '" + (dir / "sim.clf").string() +
            "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" +
-           (dir / "out").string() + "' --particles 2000");
+           (dir / "out").string() + "' --particles 2000 --profile");
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_NE(o.out.find("ATE RMSE"), std::string::npos);
+  EXPECT_NE(o.out.find("ns/particle"), std::string::npos);  // the --profile phase table
+  EXPECT_NE(slurp(dir / "out" / "profile.folded").find("mote;update;sensor "), std::string::npos);
   const std::string report = slurp(dir / "out" / "report.json");
   EXPECT_DOUBLE_EQ(json_number(report, "particles_mean"), 2000.0);
   EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);

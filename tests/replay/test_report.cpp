@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -9,7 +11,10 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 #include "mote/replay/map_image.hpp"
+#include "mote/replay/profile.hpp"
 #include "mote/replay/report.hpp"
 #include "mote/replay/report_json.hpp"
 
@@ -208,6 +213,60 @@ TEST(Report, OutputFolderHoldsTheThreeFiles) {
   EXPECT_EQ(magic, std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_EQ(read_tum(dir / "trajectory.tum").size(), 2U);
   std::filesystem::remove_all(dir.parent_path());
+}
+
+TEST(Profile, HistogramBinsAreLogSpacedFromOneMicrosecond) {
+  DurationHistogram h;
+  for (const double ms : {0.0, 0.0009, 0.001, 0.0019, 0.002, 1.0, 1e9}) h.add(ms);
+  EXPECT_EQ(h.counts[0], 2U);   // below 1 us
+  EXPECT_EQ(h.counts[1], 2U);   // [1 us, 2 us)
+  EXPECT_EQ(h.counts[2], 1U);   // [2 us, 4 us)
+  EXPECT_EQ(h.counts[10], 1U);  // 1 ms is in [0.512, 1.024)
+  EXPECT_EQ(h.counts.back(), 1U);
+  EXPECT_DOUBLE_EQ(DurationHistogram::upper_edge_ms(10), 1.024);
+  EXPECT_TRUE(std::isinf(DurationHistogram::upper_edge_ms(DurationHistogram::kBins - 1)));
+}
+
+TEST(Profile, PhasesAddUpAndCostPerParticleIsExact) {
+  ReplayResult r = fake_result(false);
+  r.updates[1].ms.total = 12.0;  // 3 ms outside the five phases: "other"
+  const RunProfile p = profile_run(r);
+  ASSERT_EQ(p.phases.size(), 6U);
+  double share = 0.0;
+  for (const PhaseProfile& phase : p.phases) {
+    std::uint64_t counted = 0;
+    for (const std::uint64_t c : phase.histogram.counts) counted += c;
+    EXPECT_EQ(counted, 2U) << phase.name;
+    share += phase.share;
+  }
+  EXPECT_NEAR(share, 1.0, 1e-12);
+  EXPECT_EQ(p.phases[1].name, "sensor");
+  EXPECT_DOUBLE_EQ(p.phases[1].total_ms, 9.0);
+  EXPECT_DOUBLE_EQ(p.phases[1].ns_per_particle, 9e6 / 2000);  // 9 ms over 2 x 1000 particles
+  EXPECT_DOUBLE_EQ(p.ns_per_particle_beam, 9e6 / 120000);
+  EXPECT_EQ(p.phases[5].name, "other");
+  EXPECT_DOUBLE_EQ(p.phases[5].total_ms, 3.0);
+  std::ostringstream folded;
+  write_folded_stacks(folded, p);
+  EXPECT_NE(folded.str().find("mote;update;sensor 9000\n"), std::string::npos) << folded.str();
+  EXPECT_NE(folded.str().find("mote;update;other 3000\n"), std::string::npos);
+}
+
+TEST(Profile, ReportGainsTheProfileOnlyWhenAsked) {
+  std::ostringstream plain;
+  write_report_json(plain, fake_result(true));
+  EXPECT_EQ(plain.str().find("\"profile\""), std::string::npos);
+  std::ostringstream profiled;
+  write_report_json(profiled, fake_result(true), ReportOptions{.profile = true});
+  JsonCheck check(profiled.str());
+  ASSERT_TRUE(check.valid()) << profiled.str();
+  EXPECT_TRUE(check.keys.contains("profile"));
+  EXPECT_NE(profiled.str().find("\"upper_edge_ms\""), std::string::npos);
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("mote_test_profile_" + std::to_string(::getpid()));
+  write_replay_outputs(dir, fake_result(true), ReportOptions{.profile = true});
+  EXPECT_TRUE(std::filesystem::exists(dir / "profile.folded"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

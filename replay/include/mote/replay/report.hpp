@@ -24,16 +24,26 @@ struct RunFigures {
 /// Figures of a run.
 [[nodiscard]] RunFigures run_figures(const ReplayResult& result);
 
+/// What goes into the outputs beyond the defaults.
+struct ReportOptions {
+  /// Adds "profile" (per-phase percentiles, histograms, ns per particle; see profile.hpp) to
+  /// report.json, writes profile.folded (folded stacks, microseconds) and prints the phase table.
+  bool profile = false;
+};
+
 /// Writes report.json's content: updates, scans, threads, model, particles_mean, update_ms
 /// {mean,p50,p99,max}, phase_ms, particle_beams_per_s, outcomes, reader stats, and with a
 /// reference ate_rmse_m, heading_rmse_deg and converged_at_s (null when never or undefined).
-void write_report_json(std::ostream& out, const ReplayResult& result);
+void write_report_json(std::ostream& out, const ReplayResult& result,
+                       const ReportOptions& options = {});
 
 /// Prints the human-readable summary table.
-void print_summary(std::ostream& out, const ReplayResult& result);
+void print_summary(std::ostream& out, const ReplayResult& result,
+                   const ReportOptions& options = {});
 
-/// Creates `dir` if needed and writes report.json, trajectory.tum and map.png into it.
-/// Throws mote::Error when a file cannot be written.
-void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result);
+/// Creates `dir` if needed and writes report.json, trajectory.tum and map.png into it (and
+/// profile.folded with options.profile). Throws mote::Error when a file cannot be written.
+void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,
+                          const ReportOptions& options = {});
 
 }  // namespace mote::replay
