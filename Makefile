@@ -41,6 +41,7 @@ bench: deps
 	cmake --build $(BENCH_BUILD) -j $(JOBS) --target $(BENCH_SUITES)
 	mkdir -p $(BENCH_OUT)
 	uptime > $(BENCH_OUT)/uptime.txt
+	git describe --always --dirty > $(BENCH_OUT)/version.txt 2>/dev/null || echo unknown > $(BENCH_OUT)/version.txt
 	set -e; for suite in $(BENCH_SUITES); do \
 	  rm -f $(BENCH_OUT)/$$suite.json; \
 	  exe=$$(find $(BENCH_BUILD)/bench -name $$suite -type f -perm -u+x | head -n 1); \

@@ -97,6 +97,37 @@ def targets_for(key, cases):
     return "; ".join(out)
 
 
+def summary(cases):
+    """One line per issue 7 target, from the 2-thread medians."""
+    def get(model, setting, n, threads=2):
+        return cases.get((model, setting, n, 60, threads))
+
+    lines = ["| target (2 threads) | measured | |", "|---|---|---|"]
+    lf = get("likelihood_field", "tracking", 100_000)
+    if lf:
+        lines.append(f"| likelihood field, 100k, 60 beams, tracking: < {LF_100K_TRACKING_MS:g} ms "
+                     f"| {ms(lf):.3g} ms | {verdict(ms(lf) < LF_100K_TRACKING_MS)} |")
+    for setting in ("tracking", "global"):
+        if e := get("likelihood_field", setting, 1_000_000):
+            lines.append(f"| likelihood field, 1M, 60 beams, {setting}: < {LF_1M_MS:g} ms "
+                         f"| {ms(e):.3g} ms | {verdict(ms(e) < LF_1M_MS)} |")
+    for setting in ("tracking", "global"):
+        if e := get("beam", setting, 10_000):
+            lines.append(f"| beam model, 10k, 60 beams, {setting}: > 20 M rays/s "
+                         f"| {si(e['rays/s'])} rays/s | {verdict(e['rays/s'] > BEAM_10K_RAYS_PER_S)} |")
+    ratios = sorted((ms(cases[k[:4] + (1,)]) / ms(e), k) for k, e in cases.items()
+                    if k[4] == 2 and k[2] > 10_000 and k[:4] + (1,) in cases)
+    if ratios:
+        met = sum(r >= MIN_SPEEDUP for r, _ in ratios)
+        worst, key = ratios[0]
+        lines.append(f"| 2t/1t >= {MIN_SPEEDUP} on every case over 10k particles "
+                     f"| {met} of {len(ratios)} cases; lowest {worst:.2f} "
+                     f"({MODELS[key[0]]}, {key[1]}, {key[2]:,}, {key[3]} beams), "
+                     f"median {ratios[len(ratios) // 2][0]:.2f} "
+                     f"| {verdict(met == len(ratios))} |")
+    return lines if len(lines) > 2 else []
+
+
 def rows(cases):
     keys = sorted({k[:4] for k in cases},
                   key=lambda k: (list(MODELS).index(k[0]), k[1] != "tracking", k[2], k[3]))
@@ -132,8 +163,12 @@ def phase_rows(cases):
     return lines
 
 
-def source_version():
-    """The commit the benchmarked tree was at, "-dirty" when it had uncommitted changes."""
+def source_version(results):
+    """The commit the benchmarked tree was at, "-dirty" when it had uncommitted changes, as
+    `make bench` recorded it (else the tree this script is in, now)."""
+    recorded = results / "version.txt"
+    if recorded.exists():
+        return recorded.read_text().strip()
     try:
         out = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
                              text=True, cwd=Path(__file__).parent, check=True)
@@ -149,7 +184,7 @@ def machine_lines(context, results, medians):
         f"- CPU: {cpu_model()}, {context.get('num_cpus', os.cpu_count())} cores "
         f"({context.get('mhz_per_cpu', '?')} MHz)",
         f"- map: {context.get('map', '?')}; run {context.get('date', '?')} "
-        f"on mote {source_version()}",
+        f"on mote {source_version(results)}",
         "- `uptime` before and after the run:" if load else "- `uptime`: not recorded",
     ]
     lines += [f"  - `{line.strip()}`" for line in load]
@@ -175,6 +210,8 @@ def write_table(path, context, cases, machine, medians, results):
     text += machine_check(machine)
     text += ["", "One full update (motion, sensor, normalize, resample, estimate) per iteration, "
              "real time. 1t / 2t: the Localizer's thread option.", ""]
+    if targets := summary(cases):
+        text += ["## Targets", ""] + targets + ["", "## All cases", ""]
     text += rows(cases)
     phases = phase_rows(cases)
     if len(phases) > 2:
