@@ -2,6 +2,7 @@
 // `amcl: ros__parameters:` section.
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <array>
 #include <fstream>
 #include <functional>
@@ -151,6 +152,11 @@ std::string place_of(const YAML::Node& node, const std::string& key) {
   return "line " + std::to_string(node.Mark().line + 1) + ", key '" + key + "'";
 }
 
+/// A warning in the format of InputError's message (one line, control characters escaped).
+std::string warning(const std::string& name, const std::string& place, const std::string& text) {
+  return InputError(name, place, text).what();
+}
+
 void apply_key(LocalizerConfig& config, const std::string& key, const YAML::Node& value,
                const std::string& name, std::vector<std::string>& warnings) {
   for (const Key& k : keys()) {
@@ -161,16 +167,16 @@ void apply_key(LocalizerConfig& config, const std::string& key, const YAML::Node
       throw InputError(name, place_of(value, key), "expected " + std::string(k.expected));
     }
     if (key == "laser_model_type" && value.as<std::string>() == "likelihood_field_prob") {
-      warnings.push_back(name + ": " + place_of(value, key) +
-                         ": beam skipping is not implemented; using likelihood_field");
+      warnings.push_back(warning(name, place_of(value, key),
+                                 "beam skipping is not implemented; using likelihood_field"));
     }
     return;
   }
   if (key.starts_with("beam_skip") || key == "do_beamskip") {
-    warnings.push_back(name + ": " + place_of(value, key) +
-                       ": beam skipping is not implemented; key ignored");
+    warnings.push_back(
+        warning(name, place_of(value, key), "beam skipping is not implemented; key ignored"));
   } else if (!is_ros_only(key)) {
-    warnings.push_back(name + ": " + place_of(value, key) + ": unknown key ignored");
+    warnings.push_back(warning(name, place_of(value, key), "unknown key ignored"));
   }
 }
 
@@ -183,33 +189,91 @@ YAML::Node parameter_map(const YAML::Node& root) {
   return root;
 }
 
+// Parameter counts that size allocations (particle store, task arena): a file asking for more is
+// more likely corrupt than meant, and would exhaust memory instead of failing with its name.
+constexpr int kMaxParticlesFromFile = 100'000'000;
+constexpr int kMaxThreadsFromFile = 1024;
+
+YAML::Node parse_yaml(const std::string& yaml_text, const std::string& name) {
+  try {
+    YAML::Node root = YAML::Load(yaml_text);
+    if (root.IsNull()) throw InputError(name, "line 1", "no parameters: the file is empty");
+    if (!root.IsMap()) {
+      throw InputError(name, "line " + std::to_string(root.Mark().line + 1),
+                       "expected a map of parameters");
+    }
+    return root;
+  } catch (const YAML::Exception& e) {
+    throw InputError(name, "line " + std::to_string(std::max(e.mark.line, 0) + 1),
+                     "invalid YAML: " + e.msg);
+  }
+}
+
+std::string key_name(const YAML::Node& key, const std::string& name) {
+  if (!key.IsScalar()) {
+    throw InputError(name, "line " + std::to_string(key.Mark().line + 1),
+                     "expected a parameter name, found a list or map");
+  }
+  return key.Scalar();
+}
+
+/// "line N, key 'k'" for a key of the file, "key 'k'" for one left at its default.
+std::string place_in(const YAML::Node& params, const std::string& key) {
+  for (const auto& entry : params) {
+    if (entry.first.Scalar() == key) return place_of(entry.second, key);
+  }
+  return "key '" + key + "'";
+}
+
+void check_sizes(const LocalizerConfig& c, const YAML::Node& params, const std::string& name) {
+  if (c.max_particles > kMaxParticlesFromFile || c.min_particles > kMaxParticlesFromFile) {
+    const char* key = c.max_particles > kMaxParticlesFromFile ? "max_particles" : "min_particles";
+    throw InputError(name, place_in(params, key),
+                     "at most " + std::to_string(kMaxParticlesFromFile) + " particles");
+  }
+  if (c.threads > kMaxThreadsFromFile) {
+    throw InputError(name, place_in(params, "threads"),
+                     "at most " + std::to_string(kMaxThreadsFromFile) + " threads");
+  }
+}
+
+/// validate(), with its ConfigError ("LocalizerConfig.FIELD: expected ...") placed in the file.
+void validate(const LocalizerConfig& c, const YAML::Node& params, const std::string& name) {
+  try {
+    c.validate();
+  } catch (const ConfigError& e) {
+    const std::string_view what = e.what();
+    constexpr std::string_view kPrefix = "LocalizerConfig.";
+    const std::size_t colon = what.find(':');
+    const std::string field = what.starts_with(kPrefix) && colon != std::string_view::npos
+                                  ? std::string(what.substr(kPrefix.size(), colon - kPrefix.size()))
+                                  : std::string();
+    throw InputError(name, field.empty() ? "line 1" : place_in(params, field), e.what());
+  }
+  check_sizes(c, params, name);
+}
+
 }  // namespace
 
 LoadedConfig parse_config(const std::string& yaml_text, const std::string& name) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(name, "line " + std::to_string(e.mark.line + 1), "invalid YAML: " + e.msg);
+  const YAML::Node params = parameter_map(parse_yaml(yaml_text, name));
+  if (!params.IsMap()) {
+    throw InputError(name, "line " + std::to_string(params.Mark().line + 1),
+                     "expected a map of parameters");
   }
   LoadedConfig loaded;
-  if (root.IsNull()) return loaded;
-  const YAML::Node params = parameter_map(root);
-  if (!params.IsMap()) throw InputError(name, "", "expected a map of parameters");
   for (const auto& entry : params) {
-    apply_key(loaded.config, entry.first.as<std::string>(), entry.second, name, loaded.warnings);
+    apply_key(loaded.config, key_name(entry.first, name), entry.second, name, loaded.warnings);
   }
-  try {
-    loaded.config.validate();
-  } catch (const ConfigError& e) {
-    throw InputError(name, "", e.what());
-  }
+  validate(loaded.config, params, name);
   return loaded;
 }
 
 LoadedConfig load_config(const std::filesystem::path& yaml) {
   std::ifstream in(yaml);
-  if (!in) throw InputError(yaml.string(), "", "cannot open the configuration file");
+  if (!in || std::filesystem::is_directory(yaml)) {
+    throw InputError(yaml.string(), "", "cannot open the configuration file");
+  }
   std::ostringstream text;
   text << in.rdbuf();
   return parse_config(text.str(), yaml.string());

@@ -109,6 +109,10 @@ MapMetadata read_map_metadata(const std::filesystem::path& yaml) {
   MapMetadata m;
   const std::string image = require(src, root, "image").Scalar();
   if (image.empty()) src.fail(YamlSource::where(root["image"], "image"), "empty image path");
+  // A NUL would end the path early when the image is opened: another file than the one named.
+  if (image.find('\0') != std::string::npos) {
+    src.fail(YamlSource::where(root["image"], "image"), "image path contains a NUL byte");
+  }
   m.image = std::filesystem::path(image).is_absolute() ? std::filesystem::path(image)
                                                        : yaml.parent_path() / image;
   m.resolution = as_number(src, require(src, root, "resolution"), "resolution");

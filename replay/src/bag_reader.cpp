@@ -39,21 +39,24 @@ class BagSource final : public ScanSource {
 
   std::optional<ScanFrame> next() override {
     while (ready_.empty() && !finished_) {
-      if (!read_chunk()) {
-        finished_ = true;
-        if (!sync_.flush(ready_, true)) {
-          throw InputError(name_, "",
-                           "scans without odometry: no nav_msgs/Odometry topic and no "
-                           "tf transform from '" +
-                               options_.odom_frame + "'");
-        }
-      } else {
+      if (read_chunk()) {
         (void)sync_.flush(ready_, false);
+      } else {
+        finish();
       }
     }
-    if (ready_.empty()) return std::nullopt;
+    if (ready_.empty()) {
+      // A bag without a single scan that no skipped record explains: empty, cut or wrong topic.
+      if (frames_ == 0 && stats_.records_skipped == 0) {
+        fail(file_.size(), "end of file without a sensor_msgs/LaserScan message" +
+                               (options_.scan_topic.empty() ? std::string()
+                                                            : " on '" + options_.scan_topic + "'"));
+      }
+      return std::nullopt;
+    }
     ScanFrame frame = std::move(ready_.front());
     ready_.pop_front();
+    ++frames_;
     return frame;
   }
 
@@ -64,10 +67,30 @@ class BagSource final : public ScanSource {
     throw InputError(name_, "byte " + std::to_string(offset), problem);
   }
 
-  void skip(std::uint64_t bytes, const std::string& message) {
+  /// Lenient mode: counts a skipped record; the first one's message reads like an InputError's.
+  void skip(std::uint64_t bytes, const std::string& place, const std::string& problem) {
     ++stats_.records_skipped;
     stats_.bytes_skipped += bytes;
-    if (stats_.first_error.empty()) stats_.first_error = message;
+    if (stats_.first_error.empty()) stats_.first_error = InputError(name_, place, problem).what();
+  }
+
+  /// The end of the records: the file must reach the index its header announces (a bag cut at a
+  /// record boundary would otherwise lose its last chunks silently), and pending scans need
+  /// odometry.
+  void finish() {
+    finished_ = true;
+    if (index_pos_ > file_.size() && stats_.records_skipped == 0) {
+      const std::string problem = "the file ends before byte " + std::to_string(index_pos_) +
+                                  ", where its header places the index: the bag is cut short";
+      if (!options_.lenient) fail(file_.size(), problem);
+      skip(index_pos_ - file_.size(), "byte " + std::to_string(file_.size()), problem);
+    }
+    if (!sync_.flush(ready_, true)) {
+      fail(file_.size(),
+           "scans without odometry: no nav_msgs/Odometry topic and no tf "
+           "transform from '" +
+               options_.odom_frame + "'");
+    }
   }
 
   void read_bag_header() {
@@ -75,8 +98,8 @@ class BagSource final : public ScanSource {
       const std::optional<BagRecord> header = file_.next();
       if (!header || header->header.op() != BagOp::kBagHeader)
         fail(13, "expected the bag header record");
-      const std::uint64_t index_pos = header->header.u64("index_pos");
-      if (index_pos > file_.position() && index_pos < file_.size()) read_index(index_pos);
+      index_pos_ = header->header.u64("index_pos");
+      if (index_pos_ > file_.position() && index_pos_ < file_.size()) read_index(index_pos_);
     } catch (const BagDecodeError& e) {
       fail(e.offset, e.problem);
     }
@@ -135,8 +158,7 @@ class BagSource final : public ScanSource {
         const std::uint64_t at = record ? record->offset + e.offset : e.offset;
         if (!options_.lenient) fail(at, e.problem);
         const std::uint64_t from = record ? record->offset : e.offset;
-        skip(file_.size() - std::min(from, file_.size()),
-             name_ + ": byte " + std::to_string(at) + ": " + e.problem);
+        skip(file_.size() - std::min(from, file_.size()), "byte " + std::to_string(at), e.problem);
         return false;
       }
     }
@@ -148,8 +170,8 @@ class BagSource final : public ScanSource {
                                         record.header.u32("size"), options_.max_chunk_bytes);
     } catch (const BagDecodeError& e) {
       if (!options_.lenient) fail(record.offset, "chunk: " + e.problem);
-      skip(file_.position() - record.offset,
-           name_ + ": byte " + std::to_string(record.offset) + ": chunk: " + e.problem);
+      skip(file_.position() - record.offset, "byte " + std::to_string(record.offset),
+           "chunk: " + e.problem);
       return;
     }
     std::vector<Event> events = collect_events(record.offset);
@@ -159,8 +181,8 @@ class BagSource final : public ScanSource {
   }
 
   std::string chunk_place(std::uint64_t chunk_at, std::uint64_t offset) const {
-    return name_ + ": byte " + std::to_string(chunk_at) + " (chunk), offset " +
-           std::to_string(offset) + " of its data";
+    return "byte " + std::to_string(chunk_at) + " (chunk), offset " + std::to_string(offset) +
+           " of its data";
   }
 
   std::vector<Event> collect_events(std::uint64_t chunk_at) {
@@ -182,8 +204,8 @@ class BagSource final : public ScanSource {
       }
     } catch (const BagDecodeError& e) {
       const std::string where = chunk_place(chunk_at, e.offset);
-      if (!options_.lenient) throw InputError(name_, where.substr(name_.size() + 2), e.problem);
-      skip(reader.remaining(), where + ": " + e.problem);
+      if (!options_.lenient) throw InputError(name_, where, e.problem);
+      skip(reader.remaining(), where, e.problem);
     }
     return events;
   }
@@ -197,8 +219,8 @@ class BagSource final : public ScanSource {
     } catch (const BagDecodeError& d) {
       const std::string where =
           chunk_place(chunk_at, e.offset) + ", message offset " + std::to_string(d.offset);
-      if (!options_.lenient) throw InputError(name_, where.substr(name_.size() + 2), d.problem);
-      skip(e.data.size(), where + ": " + d.problem);
+      if (!options_.lenient) throw InputError(name_, where, d.problem);
+      skip(e.data.size(), where, d.problem);
     }
   }
 
@@ -212,6 +234,8 @@ class BagSource final : public ScanSource {
   std::string odom_topic_;
   std::string chunk_;
   std::deque<ScanFrame> ready_;
+  std::uint64_t index_pos_ = 0;  ///< from the bag header; 0 in a bag that was never closed
+  std::size_t frames_ = 0;       ///< frames returned so far
   bool finished_ = false;
 };
 

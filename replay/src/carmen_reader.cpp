@@ -28,6 +28,12 @@ void read_ranges(detail::LineFields& f, long long count, LaserScan& scan) {
   }
 }
 
+/// hostname logger_timestamp, the end of every message: checked like the other fields.
+void read_trailer(detail::LineFields& f) {
+  (void)f.word("hostname");
+  (void)f.finite("logger_timestamp");
+}
+
 Pose2 read_pose(detail::LineFields& f) {
   Pose2 p;
   p.x = f.finite("x");
@@ -40,7 +46,9 @@ class CarmenSource final : public ScanSource {
  public:
   CarmenSource(const std::filesystem::path& path, const ReaderOptions& options)
       : in_(path), file_(path.string()), options_(options) {
-    if (!in_) throw InputError(file_, "", "cannot open file");
+    if (!in_ || std::filesystem::is_directory(path)) {
+      throw InputError(file_, "", "cannot open file");
+    }
   }
 
   std::optional<ScanFrame> next() override {
@@ -57,6 +65,7 @@ class CarmenSource final : public ScanSource {
         if (stats_.first_error.empty()) stats_.first_error = e.what();
       }
     }
+    check_end();
     return std::nullopt;
   }
 
@@ -67,6 +76,9 @@ class CarmenSource final : public ScanSource {
   std::optional<ScanFrame> parse(detail::LineFields& f) {
     if (f.empty() || f.peek(0).front() == '#') return std::nullopt;
     const std::string_view type = f.word("message type");
+    if (!is_message_type(type)) {
+      f.fail("expected a message type such as FLASER or ODOM, found '" + std::string(type) + "'");
+    }
     if (type == "FLASER") return count(parse_flaser(f, front_offset_));
     if (type == "RLASER") return count(parse_flaser(f, rear_offset_));
     if (type == "ROBOTLASER1") return count(parse_robotlaser(f));
@@ -84,7 +96,30 @@ class CarmenSource final : public ScanSource {
 
   ScanFrame count(ScanFrame frame) {
     ++stats_.records_read;
+    ++frames_;
     return frame;
+  }
+
+  /// At the end of the input: a read error, or a log without a single scan that no skipped
+  /// line explains (an empty, cut or wrong file), is an error even in lenient mode.
+  void check_end() const {
+    const std::string place = "line " + std::to_string(line_no_ + 1);
+    if (in_.bad()) throw InputError(file_, place, "read error");
+    if (frames_ == 0 && stats_.records_skipped == 0) {
+      throw InputError(file_, place,
+                       "end of file without a laser scan (FLASER, RLASER or ROBOTLASER1 line)");
+    }
+  }
+
+  /// CARMEN message names are identifiers (FLASER, ROBOTLASER1, ...); anything else means the
+  /// line is not a CARMEN message at all (binary data, another format).
+  static bool is_message_type(std::string_view type) noexcept {
+    const auto alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+    if (!alpha(type.front())) return false;
+    for (const char c : type) {
+      if (!alpha(c) && !(c >= '0' && c <= '9') && c != '_') return false;
+    }
+    return true;
   }
 
   /// FLASER/RLASER n r_1..r_n x y theta odom_x odom_y odom_theta ipc_timestamp host logger_ts.
@@ -98,6 +133,7 @@ class CarmenSource final : public ScanSource {
     (void)read_pose(f);  // laser pose: equals odometry + mount in raw logs
     frame.odometry = read_pose(f);
     frame.stamp = f.finite("ipc_timestamp");
+    read_trailer(f);
     const double steps = static_cast<double>(n - n % 2);
     frame.scan.angle_min = static_cast<float>(-std::numbers::pi / 2.0);
     frame.scan.angle_increment = static_cast<float>(std::numbers::pi / steps);
@@ -132,6 +168,7 @@ class CarmenSource final : public ScanSource {
       (void)f.finite(name);
     }
     frame.stamp = f.finite("ipc_timestamp");
+    read_trailer(f);
     frame.scan.sensor_pose = between(frame.odometry, laser);
     frame.scan.stamp = frame.stamp;
     return frame;
@@ -162,6 +199,7 @@ class CarmenSource final : public ScanSource {
   ReaderOptions options_;
   ReadStats stats_;
   std::size_t line_no_ = 0;
+  std::size_t frames_ = 0;
   Pose2 front_offset_;
   Pose2 rear_offset_{0.0, 0.0, std::numbers::pi};
 };

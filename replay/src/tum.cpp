@@ -52,13 +52,18 @@ std::vector<StampedPose> read_tum(std::istream& in, const std::string& name) {
     if (fields.empty() || fields.peek(0).front() == '#') continue;
     poses.push_back(parse_tum_line(fields));
   }
-  if (in.bad()) throw InputError(name, "line " + std::to_string(line_no + 1), "read error");
+  const std::string end = "line " + std::to_string(line_no + 1);
+  if (in.bad()) throw InputError(name, end, "read error");
+  // A trajectory file without a single pose is empty or cut, never a meaningful reference.
+  if (poses.empty()) throw InputError(name, end, "end of file without a pose");
   return poses;
 }
 
 std::vector<StampedPose> read_tum(const std::filesystem::path& path) {
   std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "", "cannot open file");
+  if (!in || std::filesystem::is_directory(path)) {
+    throw InputError(path.string(), "", "cannot open file");
+  }
   return read_tum(in, path.string());
 }
 

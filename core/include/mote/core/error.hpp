@@ -29,7 +29,24 @@ class InputError : public Error {
  private:
   static std::string format(const std::string& file, const std::string& place,
                             const std::string& problem) {
-    return place.empty() ? file + ": " + problem : file + ": " + place + ": " + problem;
+    return printable(place.empty() ? file + ": " + problem : file + ": " + place + ": " + problem);
+  }
+  /// Problems often quote the input, which may hold any byte: control characters are escaped
+  /// (\n, \xHH) so the message stays one line.
+  static std::string printable(const std::string& text) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string out;
+    for (const char c : text) {
+      const auto byte = static_cast<unsigned char>(c);
+      if (byte >= 0x20 && byte != 0x7f) {
+        out += c;
+      } else if (c == '\n') {
+        out += "\\n";
+      } else {
+        out += {'\\', 'x', kHex[byte >> 4U], kHex[byte & 0xfU]};
+      }
+    }
+    return out;
   }
 
   std::string file_;

@@ -22,8 +22,8 @@ struct StampedPose {
 };
 
 /// Reads a TUM trajectory; `name` is used in error messages. Blank lines and `#` comments are
-/// skipped. Throws InputError (name, line) on wrong field counts, bad or non-finite numbers, or
-/// a quaternion of zero length.
+/// skipped. Throws InputError (name, line) on wrong field counts, bad or non-finite numbers, a
+/// quaternion of zero length, or input without a single pose.
 [[nodiscard]] std::vector<StampedPose> read_tum(std::istream& in, const std::string& name);
 
 /// Reads a TUM trajectory file. Throws InputError if it cannot be opened or is malformed.
