@@ -23,7 +23,39 @@ macro(mote_apply_sanitizers)
     add_compile_options(-fsanitize=${_mote_san} -fno-omit-frame-pointer -fno-sanitize-recover=all)
     add_link_options(-fsanitize=${_mote_san})
   endif()
+  if(MOTE_BUILD_FUZZERS)
+    mote_check_fuzzing_toolchain()
+    # Coverage instrumentation everywhere, libFuzzer's main only in the fuzz_* executables.
+    add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
+                        -fno-sanitize-recover=all)
+    add_link_options(-fsanitize=address,undefined)
+  endif()
 endmacro()
+
+# MOTE_BUILD_FUZZERS needs clang with libFuzzer (Debian: clang, libclang-rt-14-dev).
+function(mote_check_fuzzing_toolchain)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "MOTE_BUILD_FUZZERS=ON needs clang (libFuzzer), not "
+                        "${CMAKE_CXX_COMPILER_ID}: configure a new build folder with "
+                        "-DCMAKE_CXX_COMPILER=clang++ (or run `make fuzz`)")
+  endif()
+  if(MOTE_SANITIZE)
+    message(FATAL_ERROR "MOTE_BUILD_FUZZERS=ON sets its own sanitizers (address, undefined); "
+                        "leave MOTE_SANITIZE empty")
+  endif()
+  include(CheckCXXSourceCompiles)
+  set(CMAKE_REQUIRED_FLAGS -fsanitize=fuzzer,address,undefined)
+  set(CMAKE_REQUIRED_LINK_OPTIONS -fsanitize=fuzzer,address,undefined)
+  check_cxx_source_compiles([[
+    #include <cstddef>
+    #include <cstdint>
+    extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t*, std::size_t) { return 0; }
+  ]] MOTE_HAVE_LIBFUZZER)
+  if(NOT MOTE_HAVE_LIBFUZZER)
+    message(FATAL_ERROR "MOTE_BUILD_FUZZERS=ON: ${CMAKE_CXX_COMPILER} cannot link "
+                        "-fsanitize=fuzzer; install libFuzzer (Debian: libclang-rt-14-dev)")
+  endif()
+endfunction()
 
 # mote_add_library(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
 # Creates mote_<name> with alias mote::<name>, headers in ${CMAKE_CURRENT_SOURCE_DIR}/include.
