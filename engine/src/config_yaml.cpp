@@ -82,6 +82,7 @@ const std::vector<Key>& keys() {
         field<double>("recovery_alpha_fast", kNum, &LocalizerConfig::recovery_alpha_fast),
         field<double>("update_min_d", kNum, &LocalizerConfig::update_min_d),
         field<double>("update_min_a", kNum, &LocalizerConfig::update_min_a),
+        field<double>("odom_jump_max_d", kNum, &LocalizerConfig::odom_jump_max_d),
         field<bool>("amcl_motion_conventions", kBool, &LocalizerConfig::amcl_motion_conventions),
         field<double>("alpha1", kNum, &LocalizerConfig::alpha1),
         field<double>("alpha2", kNum, &LocalizerConfig::alpha2),

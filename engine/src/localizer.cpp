@@ -76,7 +76,10 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   if (!s.initialized) throw Error("Localizer::update called before initialize()");
   if (!is_finite(odometry))
     return s.reject(UpdateOutcome::kRejectedOdometry, "odometry pose is not finite");
+  if (const std::string problem = scan_geometry_problem(scan); !problem.empty())
+    return s.reject(UpdateOutcome::kRejectedScan, problem);
   if (!s.select(scan)) return s.reject(UpdateOutcome::kRejectedScan, "no valid beam in the scan");
+  if (s.has_odometry && s.jumped(odometry)) return s.reset_odometry(odometry);
   if (s.has_odometry && !s.moved_enough(odometry)) return s.reject(UpdateOutcome::kNotMoved, "");
 
   s.executor.run([&] {

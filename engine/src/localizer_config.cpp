@@ -37,6 +37,7 @@ void validate_resampling(const LocalizerConfig& c) {
   require(probability(c.recovery_alpha_fast), "recovery_alpha_fast", "a rate in [0, 1]");
   require(finite_at_least(c.update_min_d, 0.0), "update_min_d", "a distance >= 0");
   require(finite_at_least(c.update_min_a, 0.0), "update_min_a", "an angle >= 0");
+  require(finite_positive(c.odom_jump_max_d), "odom_jump_max_d", "a positive distance in metres");
 }
 
 void validate_motion(const LocalizerConfig& c) {

@@ -18,6 +18,10 @@
 
 namespace mote {
 
+// Why the scan's geometry cannot be used (non-finite angles, NaN range limits or sensor pose),
+// or empty when it can.
+[[nodiscard]] std::string scan_geometry_problem(const LaserScan& scan);
+
 using SensorVariant = std::variant<LikelihoodFieldModel, BeamModel>;
 using MotionVariant = std::variant<OdometryModel, OmniModel, AckermannModel>;
 
@@ -28,6 +32,8 @@ struct Localizer::Impl {
   bool reject(UpdateOutcome outcome, std::string reason);
   bool select(const LaserScan& scan);
   [[nodiscard]] bool moved_enough(const Pose2& odometry) const;
+  [[nodiscard]] bool jumped(const Pose2& odometry) const;
+  bool reset_odometry(const Pose2& odometry);
   void predict(const Pose2& odometry);
   void weigh();
   void normalize();

@@ -100,6 +100,31 @@ bool Localizer::Impl::moved_enough(const Pose2& odometry) const {
          std::abs(delta.theta) > config.update_min_a;
 }
 
+bool Localizer::Impl::jumped(const Pose2& odometry) const {
+  const Pose2 delta = between(last_odometry, odometry);
+  return std::hypot(delta.x, delta.y) > config.odom_jump_max_d;
+}
+
+bool Localizer::Impl::reset_odometry(const Pose2& odometry) {
+  const Pose2 delta = between(last_odometry, odometry);
+  last_odometry = odometry;  // later steps count from here
+  return reject(UpdateOutcome::kRejectedOdometry,
+                "odometry jumped " + std::to_string(std::hypot(delta.x, delta.y)) +
+                    " m since the last update (more than odom_jump_max_d): taken as an "
+                    "odometry reset, particles kept");
+}
+
+std::string scan_geometry_problem(const LaserScan& scan) {
+  if (!std::isfinite(scan.angle_min) || !std::isfinite(scan.angle_increment)) {
+    return "scan beam angles are not finite (angle_min, angle_increment)";
+  }
+  if (std::isnan(scan.range_min) || std::isnan(scan.range_max)) {
+    return "scan range_min or range_max is NaN";
+  }
+  if (!is_finite(scan.sensor_pose)) return "scan sensor pose is not finite";
+  return "";
+}
+
 void Localizer::Impl::predict(const Pose2& odometry) {
   const Odometry u{last_odometry, odometry};
   std::visit(

@@ -3,6 +3,20 @@
 /// mote::Localizer: the complete MCL update (design.md section 2) behind one class. Construct it
 /// with a map and a LocalizerConfig, initialize it, then call update() with every odometry pose
 /// and scan; read estimate() and last_update() after each.
+///
+/// Bad input never reaches the particles (tests/engine/test_bad_input.cpp):
+///  - odometry with a NaN or infinite field: kRejectedOdometry, nothing changes;
+///  - an odometry step longer than odom_jump_max_d (a driver restart, kilometres of drift):
+///    kRejectedOdometry, taken as an odometry reset: the particles stay, later steps count from
+///    the new odometry pose;
+///  - a scan with non-finite beam angles, a NaN range limit or a non-finite sensor pose, or
+///    without a valid reading (all NaN, negative, below range_min; or all at max range with the
+///    likelihood field, which ignores max-range readings as amcl does): kRejectedScan, nothing
+///    changes. The beam model weighs all-max-range scans through its z_max term;
+///  - a scan no particle explains (every likelihood zero): kUnexplainedScan, weights left
+///    uniform instead of NaN;
+///  - a config with min_particles < 1 or other invalid values: ConfigError from the
+///    constructor; a map without a free cell: ConfigError from initialize_global().
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -35,8 +49,8 @@ enum class UpdateOutcome : std::uint8_t {
   kUpdated,           ///< motion, sensor and (maybe) resampling ran
   kInitialized,       ///< first scan after initialize(): weighed without motion
   kNotMoved,          ///< below update_min_d / update_min_a: nothing changed
-  kRejectedOdometry,  ///< odometry pose not finite: nothing changed
-  kRejectedScan,      ///< no valid beam in the scan: nothing changed
+  kRejectedOdometry,  ///< odometry not finite, or a jump past odom_jump_max_d (reset)
+  kRejectedScan,      ///< no valid beam, or non-finite scan geometry: nothing changed
   kUnexplainedScan,   ///< no particle explained the scan: weights left uniform (see reason)
 };
 

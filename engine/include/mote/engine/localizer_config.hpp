@@ -56,6 +56,10 @@ struct LocalizerConfig {
   // --- update gate ---------------------------------------------------------------------------
   double update_min_d = 0.25;  ///< m of translation before the filter updates
   double update_min_a = 0.2;   ///< rad of rotation before the filter updates
+  /// m: an odometry step longer than this between two updates is taken as an odometry reset
+  /// (a driver restart, a log splice), not as motion: the update is rejected
+  /// (kRejectedOdometry), the particles stay, and later steps count from the new pose.
+  double odom_jump_max_d = 10.0;
 
   // --- motion model (Thrun table 5.6, amcl alpha convention) ------------------------------
   OdomModel odom_model_type = OdomModel::kDiff;
