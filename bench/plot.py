@@ -64,6 +64,11 @@ def si(value):
     return f"{value:.3g}"
 
 
+def num(value):
+    """3 significant digits without an exponent (1,330 rather than 1.33e+03)."""
+    return f"{value:,.0f}" if value >= 1000 else f"{value:.3g}"
+
+
 def verdict(ok):
     return "met" if ok else "**not met**"
 
@@ -142,7 +147,7 @@ def rows(cases):
         ratio = f"{ms(one) / ms(two):.2f}" if one and two else "-"
         lines.append(
             f"| {MODELS[model]} | {setting} | {n:,} | {beams} "
-            f"| {f'{ms(one):.3g}' if one else '-'} | {f'{ms(two):.3g}' if two else '-'} "
+            f"| {num(ms(one)) if one else '-'} | {num(ms(two)) if two else '-'} "
             f"| {si(two['updates/s']) if two else '-'} "
             f"| {si(two['particle_beams/s']) if two else '-'} | {ratio} "
             f"| {targets_for((model, setting, n, beams, 2), cases)} |")
@@ -158,7 +163,7 @@ def phase_rows(cases):
             cases.items(), key=lambda kv: (list(MODELS).index(kv[0][0]), kv[0][2])):
         if setting != "tracking" or beams != 60 or threads != 2:
             continue
-        values = " | ".join(f"{e[f'ns_{p}/p']:.3g}" for p in phases)
+        values = " | ".join(num(e[f"ns_{p}/p"]) for p in phases)
         lines.append(f"| {MODELS[model]} | {n:,} | {values} | {e['bytes/p']:.1f} |")
     return lines
 
