@@ -40,12 +40,22 @@ struct Case {
 /// (generous for sanitizer builds on a shared machine).
 inline constexpr double kMaxSecondsPerCase = 5.0;
 
-/// A folder of this process's own (ctest runs test processes in parallel).
+/// A folder of this process's own (ctest runs test processes in parallel), removed when the
+/// process ends.
 inline fs::path scratch(const std::string& name) {
+  struct Folders {
+    std::vector<fs::path> made;
+    ~Folders() {
+      std::error_code ignored;
+      for (const fs::path& dir : made) fs::remove_all(dir, ignored);
+    }
+  };
+  static Folders folders;
   const fs::path dir =
       fs::temp_directory_path() / ("mote_robustness_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
+  folders.made.push_back(dir);
   return dir;
 }
 
