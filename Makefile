@@ -6,7 +6,7 @@ JOBS        ?= $(shell nproc)
 CMAKE_FLAGS ?=
 FUZZ_SECONDS ?= 30
 
-.PHONY: all deps configure build run test bench fuzz clean
+.PHONY: all deps configure build run test bench fuzz tsan clean
 
 all: build
 
@@ -60,6 +60,10 @@ fuzz: deps
 	  -DMOTE_BUILD_EXAMPLES=OFF -DMOTE_BUILD_TOOL=OFF -DMOTE_NATIVE=OFF $(CMAKE_FLAGS)
 	cmake --build build-fuzz -j $(JOBS)
 	tests/fuzz/run-fuzzers build-fuzz $(FUZZ_SECONDS)
+
+# The engine and Localizer tests under ThreadSanitizer (clang) in build-tsan; see .ci/tsan.
+tsan: deps
+	.ci/tsan
 
 clean:
 	rm -rf $(BUILD)

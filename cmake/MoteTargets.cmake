@@ -15,6 +15,16 @@ function(mote_target_options target)
   endif()
 endfunction()
 
+# TSan needs clang: only clang can leave TBB's header templates uninstrumented (see
+# cmake/tsan-ignorelist.txt for why that is needed with the system libtbb).
+function(mote_configure_thread_sanitizer)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "MOTE_SANITIZE=thread needs clang (CXX=clang++): GCC cannot skip "
+                        "instrumenting TBB's headers, and the system libtbb is not instrumented")
+  endif()
+  add_compile_options(-fsanitize-ignorelist=${PROJECT_SOURCE_DIR}/cmake/tsan-ignorelist.txt)
+endfunction()
+
 # Sanitizers must instrument every translation unit and the final link, so they are the one
 # setting applied directory-wide.
 macro(mote_apply_sanitizers)
@@ -22,6 +32,9 @@ macro(mote_apply_sanitizers)
     string(REPLACE ";" "," _mote_san "${MOTE_SANITIZE}")
     add_compile_options(-fsanitize=${_mote_san} -fno-omit-frame-pointer -fno-sanitize-recover=all)
     add_link_options(-fsanitize=${_mote_san})
+    if("thread" IN_LIST MOTE_SANITIZE)
+      mote_configure_thread_sanitizer()
+    endif()
   endif()
   if(MOTE_BUILD_FUZZERS)
     mote_check_fuzzing_toolchain()

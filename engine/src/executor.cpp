@@ -3,6 +3,8 @@
 #include <oneapi/tbb/info.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include "mote/core/parallel.hpp"
+
 namespace mote {
 
 struct Executor::Impl {
@@ -23,6 +25,14 @@ Executor& Executor::operator=(Executor&&) noexcept = default;
 
 int Executor::threads() const noexcept { return impl_->arena.max_concurrency(); }
 
-void Executor::run(const std::function<void()>& job) const { impl_->arena.execute(job); }
+void Executor::run(const std::function<void()>& job) const {
+  par::detail::ForkJoin sync;  // the arena may run the job on one of its own threads
+  impl_->arena.execute([&] {
+    sync.task_begins();
+    job();
+    sync.task_ends();
+  });
+  sync.joined();
+}
 
 }  // namespace mote

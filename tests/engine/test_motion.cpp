@@ -153,7 +153,7 @@ TEST(Predict, GivesTheSameBitsForAnyThreadCountAndGrain) {
   ParticleStore reference = store_at({1.0, 2.0, 3.0}, 10001);
   Executor(1)([&] { predict(model, u, reference.view(), 9, 4, 1 << 20); });
   for (const int threads : {2, 4}) {
-    for (const std::size_t grain : {16, 1000}) {
+    for (const std::size_t grain : {std::size_t{16}, std::size_t{1000}}) {
       ParticleStore other = store_at({1.0, 2.0, 3.0}, 10001);
       const Executor ex(threads);
       ex([&] { predict(model, u, other.view(), 9, 4, grain); });

@@ -76,7 +76,7 @@ TEST(Normalize, IsIdenticalForAnyThreadCountAndGrain) {
   };
   const auto reference = run(1, 1 << 20);
   for (const int threads : {1, 2, 4}) {
-    for (const std::size_t grain : {16, 5000}) {
+    for (const std::size_t grain : {std::size_t{16}, std::size_t{5000}}) {
       const auto other = run(threads, grain);
       EXPECT_EQ(other.first, reference.first) << threads << " " << grain;
       EXPECT_EQ(other.second, reference.second) << threads << " " << grain;
