@@ -12,6 +12,12 @@ function(mote_target_options target)
   endif()
   if(MOTE_NATIVE)
     target_compile_options(${target} PRIVATE -march=native)
+    # GCC 12 with AVX-512 warns inside its own intrinsics (_mm512_undefined_ps, reached through
+    # Eigen and mote's gathers): -Wmaybe-uninitialized false positives, GCC bug 105593, fatal
+    # with MOTE_WERROR.
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+      target_compile_options(${target} PRIVATE -Wno-maybe-uninitialized)
+    endif()
   endif()
 endfunction()
 
