@@ -4,29 +4,32 @@
 /// these three calls, so determinism is argued once, here:
 ///  - chunk boundaries are multiples of kVectorWidth and of the grain, never of the thread count,
 ///    so a vectorized loop body treats every particle the same way (design.md section 3);
-///  - reductions split a fixed block grid with tbb::parallel_deterministic_reduce and a
-///    simple_partitioner, so the reduction tree depends on n and the block size only;
+///  - reductions compute one partial per block of a fixed block grid in parallel and combine the
+///    partials in block order on the calling thread, so the result depends on n and the block
+///    size only;
 ///  - scans are over integers, so any association gives the exact serial result.
+/// All three are tbb::parallel_for over blocks: partial results live in plain per-block slots
+/// rather than inside TBB's reduction and scan nodes, which ThreadSanitizer could not follow
+/// (see ForkJoin).
 /// The calls run in the caller's task arena (see mote::Executor); a one-thread arena runs the
 /// same code serially.
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/parallel_reduce.h>
-#include <oneapi/tbb/parallel_scan.h>
 #include <oneapi/tbb/partitioner.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <vector>
 
 // ThreadSanitizer cannot see the fork/join synchronization of the system libtbb, which is not
 // instrumented: every write a worker made inside a parallel call and the caller read after it
 // would be reported. ForkJoin states the happens-before edges TBB guarantees: the caller's
-// writes before a call happen before every task, every task happens before the call returns
-// and before any join of partial results. Tasks stay unordered among themselves, so a race
-// between two chunks is still reported. Without TSan the annotations compile to nothing.
+// writes before a call happen before every task, and every task happens before the call
+// returns. Tasks stay unordered among themselves, so a race between two chunks is still
+// reported. Without TSan the annotations compile to nothing.
 #if defined(__SANITIZE_THREAD__)
 #define MOTE_TSAN_ANNOTATIONS 1
 #elif defined(__has_feature)
@@ -48,8 +51,7 @@ class ForkJoin {
   ForkJoin() { release(&fork_); }          // in the caller, before the algorithm
   void task_begins() { acquire(&fork_); }  // in a task, before the body
   void task_ends() { release(&join_); }    // in a task, after the body
-  void joined() { acquire(&join_); }       // after the algorithm, or before a join
-  void join_ends() { release(&join_); }    // after a join of partial results
+  void joined() { acquire(&join_); }       // in the caller, after the algorithm
 
  private:
   static void acquire([[maybe_unused]] char* token) {
@@ -110,59 +112,59 @@ void for_each_chunk(std::size_t n, std::size_t grain, const Body& body) {
 }
 
 /// Deterministic reduction: partial(begin, end) -> T over blocks of `block` elements (rounded to a
-/// whole number of vectors), combined by join in a tree that depends only on n and block.
+/// whole number of vectors), in parallel, then join(join(join(identity, p_0), p_1), ...) in
+/// block order on the calling thread.
 template <class T, class Partial, class Join>
 [[nodiscard]] T reduce(std::size_t n, std::size_t block, T identity, const Partial& partial,
                        const Join& join) {
   if (n == 0) return identity;
   const std::size_t step = aligned_grain(block);
-  const std::size_t blocks = (n + step - 1) / step;
-  detail::ForkJoin sync;
-  T result = tbb::parallel_deterministic_reduce(
-      /*range=*/tbb::blocked_range<std::size_t>(0, blocks, 1),
-      /*identity=*/identity,
-      /*body=*/
-      [&](const tbb::blocked_range<std::size_t>& r, T acc) {
-        sync.task_begins();
-        for (std::size_t b = r.begin(); b != r.end(); ++b) {
-          acc = join(acc, partial(b * step, std::min(n, (b + 1) * step)));
-        }
-        sync.task_ends();
-        return acc;
-      },
-      /*join=*/
-      [&](const T& a, const T& b) {
-        sync.joined();
-        T joined = join(a, b);
-        sync.join_ends();
-        return joined;
-      },
-      /*partitioner=*/tbb::simple_partitioner());
-  sync.joined();
+  if (n <= step) return join(identity, partial(std::size_t{0}, n));
+  std::vector<T> partials((n + step - 1) / step, identity);
+  for_each_chunk(n, step, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; b += step) {
+      partials[b / step] = partial(b, std::min(end, b + step));
+    }
+  });
+  T result = std::move(identity);
+  for (const T& p : partials) result = join(result, p);
   return result;
 }
 
 /// Exclusive prefix sum of integers: out[i] = sum of value(j) for j < i; returns the total.
-/// Integer addition is associative, so the parallel result equals the serial one exactly.
+/// value(i) is called once per element. Integer addition is associative, so the result equals
+/// the serial one exactly: block sums in parallel (out holds the values meanwhile), a serial
+/// scan of the block sums, then each block turns its values into prefix sums in parallel.
 template <class Int, class Value>
 Int exclusive_scan(std::size_t n, std::size_t grain, Int* out, const Value& value) {
   static_assert(std::is_integral_v<Int>, "scans are integer-only to stay exact");
-  detail::ForkJoin sync;
-  const Int total = tbb::parallel_scan(
-      /*range=*/tbb::blocked_range<std::size_t>(0, n, aligned_grain(grain)),
-      /*identity=*/Int{0},
-      /*scan body=*/
-      [&](const tbb::blocked_range<std::size_t>& r, Int running, bool is_final) {
-        sync.task_begins();
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          if (is_final) out[i] = running;
-          running += static_cast<Int>(value(i));
-        }
-        sync.task_ends();
-        return running;
-      },
-      /*join=*/[](Int left, Int right) { return left + right; });
-  sync.joined();
+  if (n == 0) return Int{0};
+  const std::size_t step = aligned_grain(grain);
+  std::vector<Int> block_start((n + step - 1) / step);
+  for_each_chunk(n, step, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; b += step) {
+      Int sum{0};
+      for (std::size_t i = b; i < std::min(end, b + step); ++i) {
+        out[i] = static_cast<Int>(value(i));
+        sum += out[i];
+      }
+      block_start[b / step] = sum;
+    }
+  });
+  Int total{0};
+  for (Int& b : block_start) {
+    const Int sum = b;
+    b = total;
+    total += sum;
+  }
+  for_each_chunk(n, step, [&](std::size_t begin, std::size_t end) {
+    Int running = block_start[begin / step];  // blocks inside one chunk are contiguous
+    for (std::size_t i = begin; i < end; ++i) {
+      const Int v = out[i];
+      out[i] = running;
+      running += v;
+    }
+  });
   return total;
 }
 
