@@ -10,19 +10,9 @@
 #include <span>
 
 #include "mote/core/pose.hpp"
+#include "mote/engine/state_columns.hpp"
 
 namespace mote {
-
-/// Alignment of every particle column, bytes (one cache line, one AVX-512 register).
-inline constexpr std::size_t kParticleAlignment = 64;
-
-/// Columns are padded to a multiple of this many particles (mote::par::kVectorWidth).
-inline constexpr std::size_t kParticlePadding = 16;
-
-/// Rounds n up to a whole number of kParticlePadding.
-[[nodiscard]] constexpr std::size_t pad_particles(std::size_t n) noexcept {
-  return (n + kParticlePadding - 1) / kParticlePadding * kParticlePadding;
-}
 
 /// Mutable spans over one particle buffer. Index i < size() is a particle; indices in
 /// [size(), padded_size()) are padding lanes that kernels may compute on and must never report.
@@ -71,58 +61,51 @@ struct ConstParticleView {
   [[nodiscard]] Pose2 pose(std::size_t i) const noexcept { return {x[i], y[i], theta[i]}; }
 };
 
-/// Owner of the particle columns: two buffers (current and spare) plus integer scratch space for
-/// resampling. Memory only grows (in capacity); resizing within the capacity never allocates, so
-/// a filter whose particle count goes up and down (KLD) allocates only on new maxima.
+/// Owner of the particle columns: the StateStore with the three columns x, y, theta (two
+/// buffers, current and spare, plus integer scratch space for resampling).
 class ParticleStore {
  public:
   /// An empty store; reserve() or resize() before use.
-  ParticleStore() = default;
+  ParticleStore() : columns_(3) {}
   /// A store of n particles at the origin with uniform weights.
-  explicit ParticleStore(std::size_t n);
+  explicit ParticleStore(std::size_t n) : columns_(3, n) {}
 
   /// Number of particles in the current buffer.
-  [[nodiscard]] std::size_t size() const noexcept { return size_; }
+  [[nodiscard]] std::size_t size() const noexcept { return columns_.size(); }
   /// Particles the store holds without allocating (a multiple of kParticlePadding).
-  [[nodiscard]] std::size_t capacity() const noexcept { return capacity_; }
+  [[nodiscard]] std::size_t capacity() const noexcept { return columns_.capacity(); }
 
   /// Makes room for n particles in both buffers; allocates only when n exceeds capacity().
-  void reserve(std::size_t n);
+  void reserve(std::size_t n) { columns_.reserve(n); }
   /// Sets the particle count of the current buffer. New particles and padding lanes are at the
   /// origin with log-weight -log(n); existing particles keep their values.
-  void resize(std::size_t n);
+  void resize(std::size_t n) { columns_.resize(n); }
 
   /// The current particles.
-  [[nodiscard]] ParticleView view() noexcept { return view_of(current_, size_); }
-  [[nodiscard]] ConstParticleView view() const noexcept { return const_view_of(current_, size_); }
+  [[nodiscard]] ParticleView view() noexcept { return poses(columns_.view()); }
+  [[nodiscard]] ConstParticleView view() const noexcept { return poses(columns_.view()); }
 
   /// The spare buffer sized for n particles (n <= capacity() after reserve(n)), e.g. as a
   /// resampling target. Its contents are unspecified until written.
-  [[nodiscard]] ParticleView spare(std::size_t n) noexcept { return view_of(1 - current_, n); }
+  [[nodiscard]] ParticleView spare(std::size_t n) noexcept { return poses(columns_.spare(n)); }
   /// Makes the spare buffer current with n particles (what a gather into spare(n) wrote).
-  void swap_buffers(std::size_t n) noexcept;
+  void swap_buffers(std::size_t n) noexcept { columns_.swap_buffers(n); }
 
   /// Two integer scratch columns of capacity() + 1 entries each (resampling prefix sums).
-  [[nodiscard]] std::uint64_t* scratch(int which) noexcept { return scratch_[which].get(); }
+  [[nodiscard]] std::uint64_t* scratch(int which) noexcept { return columns_.scratch(which); }
 
   /// Sets every log-weight (and padding lane) to -log(size()).
-  void set_uniform_weights() noexcept;
+  void set_uniform_weights() noexcept { columns_.set_uniform_weights(); }
 
  private:
-  struct AlignedFree {
-    void operator()(float* p) const noexcept;
-  };
-  using Column = std::unique_ptr<float[], AlignedFree>;
+  [[nodiscard]] static ParticleView poses(const StateView& v) noexcept {
+    return {v.column(0), v.column(1), v.column(2), v.logw, v.count};
+  }
+  [[nodiscard]] static ConstParticleView poses(const ConstStateView& v) noexcept {
+    return {v.column(0), v.column(1), v.column(2), v.logw, v.count};
+  }
 
-  [[nodiscard]] ParticleView view_of(int buffer, std::size_t n) const noexcept;
-  [[nodiscard]] ConstParticleView const_view_of(int buffer, std::size_t n) const noexcept;
-  void fill_tail(std::size_t from) noexcept;
-
-  Column buffers_[2];  // each holds 4 columns of capacity_ floats: x, y, theta, logw
-  std::unique_ptr<std::uint64_t[]> scratch_[2];
-  std::size_t capacity_ = 0;
-  std::size_t size_ = 0;
-  int current_ = 0;
+  StateStore columns_;
 };
 
 }  // namespace mote
