@@ -122,6 +122,8 @@ std::size_t KldBins::count(const ConstParticleView& p, std::size_t grain) {
 
 std::size_t kld_sample_count(const ConstParticleView& particles, KldBins& bins,
                              const KldConfig& config, std::size_t grain) {
+  // A fixed count needs no bins: the formula's n would be clamped to it anyway.
+  if (config.min_particles == config.max_particles) return config.max_particles;
   return kld_sample_count(bins.count(particles, grain), config);
 }
 

@@ -176,11 +176,7 @@ void Localizer::Impl::maybe_resample() {
     return;
   }
   updates_since_resample = 0;
-  // A fixed count (min_particles == max_particles) needs no bin count.
-  const std::size_t n_out =
-      kld.min_particles == kld.max_particles
-          ? kld.max_particles
-          : kld_sample_count(std::as_const(store).view(), bins, kld, config.grain);
+  const std::size_t n_out = kld_sample_count(std::as_const(store).view(), bins, kld, config.grain);
   resample_systematic(store, n_out, config.seed, step, config.grain);
   stats.resampled = true;
   if (p_inject > 0.0) {

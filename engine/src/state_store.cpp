@@ -181,6 +181,7 @@ std::size_t StateKldBins::count(const ConstStateView& states, std::size_t grain)
 
 std::size_t kld_sample_count(const ConstStateView& states, StateKldBins& bins,
                              const KldConfig& config, std::size_t grain) {
+  if (config.min_particles == config.max_particles) return config.max_particles;  // as kld.cpp
   return kld_sample_count(bins.count(states, grain), config);
 }
 

@@ -63,7 +63,8 @@ class KldBins {
   std::vector<std::uint64_t> words_;
 };
 
-/// k from the bins occupied by the current particles, then n from kld_sample_count. Combine
+/// k from the bins occupied by the current particles, then n from kld_sample_count (no bin
+/// count when min_particles == max_particles: n is that count). Combine
 /// with resample_systematic(store, n, ...): see kld.cpp for why this order is sound.
 [[nodiscard]] std::size_t kld_sample_count(const ConstParticleView& particles, KldBins& bins,
                                            const KldConfig& config,
