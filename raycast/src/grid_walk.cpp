@@ -50,7 +50,7 @@ struct LineCursor {
 
 /// Whether a wall covers point `along` (m) of grid line `line`, the ray being in cell `cell`
 /// along the line. Walls are the boundaries between cells whose states differ, extended by
-/// kSnapDistance past their ends as Embree's quads are, so touching a wall's end (a cell
+/// kSnapDistance past their ends as Embree's walls are, so touching a wall's end (a cell
 /// corner) counts as a hit. `differs(line, cell)` says whether the two cells beside `line` at
 /// position `cell` differ.
 template <class Differs>
@@ -79,7 +79,7 @@ float walk_grid(const CellMask& m, const GridRay& r, float max_range) {
   LineCursor x(m, r.ox, r.dx, t0, m.width);
   LineCursor y(m, r.oy, r.dy, t0, m.height);
   // Visit the crossings in order of t; a ray along a grid line never crosses it, so the walls
-  // lying in its own line are skipped, as Embree skips quads the ray lies in.
+  // lying in its own line are skipped, as Embree skips walls the ray lies in.
   while (true) {
     const double t = std::min(x.t, y.t);
     if (t > t1) return max_range;

@@ -8,7 +8,7 @@ namespace mote::detail {
 
 /// Range (m) along a grid frame ray (already rounded to float) to the first wall, or max_range.
 /// A wall is any boundary between a blocking and a non-blocking cell, extended by kSnapDistance
-/// past its ends like the Embree quads: a ray through a cell corner stops if a wall ends there,
+/// past its ends like the Embree walls: a ray through a cell corner stops if a wall ends there,
 /// and a ray running exactly along a grid line stops where a wall crosses or touches the line.
 /// The caller has already applied the start rule (CellMask::blocks_start).
 [[nodiscard]] float walk_grid(const CellMask& mask, const GridRay& ray, float max_range);

@@ -20,7 +20,7 @@ constexpr float kWallTop = 1.0F;
 
 /// The segment lengthened by kSnapDistance at both ends. Embree's watertight test leaves the
 /// open end of a wall to edge tie-breaking, so a ray through a cell corner could pass or stop
-/// depending on the quad's orientation; the overlap makes it stop, as the grid walk does.
+/// depending on the triangle's orientation; the overlap makes it stop, as the grid walk does.
 detail::WallSegment extended(detail::WallSegment s) {
   const auto e = static_cast<float>(detail::kSnapDistance);
   if (s.y0 == s.y1) {
@@ -33,19 +33,34 @@ detail::WallSegment extended(detail::WallSegment s) {
   return s;
 }
 
-/// Adds one quad per wall segment, extruded in z, to a fresh geometry attached to the scene.
+/// Height (m) of a wall triangle's far vertex, below the rays' plane z = 0. Close to 0 keeps the
+/// triangle's bounding box within 1/64 of its segment's length; the triangle stays well shaped.
+constexpr float kFarVertexZ = -1.0F / 64.0F;
+
+/// Adds one triangle per wall segment to a fresh geometry attached to the scene. The triangle
+/// stands in the wall's vertical plane with one edge upright at the segment's start (z in [-1, 1])
+/// and its far vertex below z = 0, placed so that the edge from the top crosses z = 0 exactly at
+/// the segment's end: the triangle's cut with the rays' plane is the segment. One triangle, not a
+/// quad (two triangles), leaves no inner edge for a ray to slip through, so the scene can use
+/// Embree's faster non-robust traversal; the ends overlap their neighbours (extended()).
 void add_walls(RTCScene scene, const std::vector<detail::WallSegment>& walls) {
-  RTCGeometry geometry = rtcNewGeometry(detail::embree_device(), RTC_GEOMETRY_TYPE_QUAD);
+  RTCGeometry geometry = rtcNewGeometry(detail::embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * walls.size()));
-  auto* quads = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), walls.size()));
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * walls.size()));
+  auto* triangles = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), walls.size()));
+  // The top edge falls from kWallTop to kFarVertexZ and crosses z = 0 at the fraction
+  // kWallTop / (kWallTop - kFarVertexZ) of the way: the far vertex sits at `reach` times the
+  // segment's length from its start.
+  const float reach = 1.0F - kFarVertexZ / kWallTop;
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const detail::WallSegment s = extended(walls[w]);
-    const float corners[12] = {s.x0, s.y0, kWallBottom, s.x1, s.y1, kWallBottom,
-                               s.x1, s.y1, kWallTop,    s.x0, s.y0, kWallTop};
-    for (std::size_t c = 0; c < 12; ++c) vertices[12 * w + c] = corners[c];
-    for (unsigned c = 0; c < 4; ++c) quads[4 * w + c] = static_cast<unsigned>(4 * w) + c;
+    const float far_x = s.x0 + reach * (s.x1 - s.x0);
+    const float far_y = s.y0 + reach * (s.y1 - s.y0);
+    const float corners[9] = {s.x0,     s.y0,  kWallBottom, s.x0,       s.y0,
+                              kWallTop, far_x, far_y,       kFarVertexZ};
+    for (std::size_t c = 0; c < 9; ++c) vertices[9 * w + c] = corners[c];
+    for (unsigned c = 0; c < 3; ++c) triangles[3 * w + c] = static_cast<unsigned>(3 * w) + c;
   }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene, geometry);
@@ -70,9 +85,8 @@ struct RayCaster::Impl {
     const std::vector<detail::WallSegment> walls = detail::wall_segments(mask);
     wall_count = walls.size();
     scene = rtcNewScene(detail::embree_device());
-    // Robust mode makes the quads watertight, so rays through the shared corner of two walls
-    // cannot slip between them.
-    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    // No RTC_SCENE_FLAG_ROBUST: it cost 20-30% per ray, and it was only needed while each wall
+    // was a quad whose two triangles met in the middle of the wall (see add_walls).
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
     if (!walls.empty()) add_walls(scene, walls);
     rtcCommitScene(scene);

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Ray casting on an occupancy grid with Embree: the grid's wall boundaries become merged quads,
+/// Ray casting on an occupancy grid with Embree: the grid's wall boundaries become merged segments,
 /// rays go out in 16-wide packets (design.md section 4: 130-160 ns per ray per core).
 
 #include <memory>
@@ -18,8 +18,8 @@ namespace mote {
 /// thread-safe; it runs in the caller's task arena.
 class RayCaster {
  public:
-  /// Builds the Embree scene (one quad per maximal wall segment). Throws mote::Error when Embree
-  /// fails.
+  /// Builds the Embree scene (one triangle per maximal wall segment). Throws mote::Error when
+  /// Embree fails.
   explicit RayCaster(const OccupancyGrid& grid, RayCastOptions options = {});
   ~RayCaster();
   RayCaster(RayCaster&&) noexcept;
@@ -35,7 +35,7 @@ class RayCaster {
   /// Range (m) from a map frame point along a map frame angle (rad), at most max_range.
   [[nodiscard]] float cast_one(Point2 origin, double angle, float max_range) const;
 
-  /// Number of wall quads in the scene.
+  /// Number of wall segments (triangles) in the scene.
   [[nodiscard]] std::size_t wall_count() const noexcept;
 
  private:
