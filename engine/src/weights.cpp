@@ -64,6 +64,44 @@ double sum_exp(const float* logw, std::size_t n, float shift, int power) {
       /*join=*/[](double a, double b) { return a + b; });
 }
 
+// Sums of w_i = exp(logw_i - shift) and of w_i^2 in one pass (NaN -> weight 0): what
+// normalization needs for the total and, through w_i / total, for the effective sample size.
+struct WeightSums {
+  double w = 0.0;
+  double w_squared = 0.0;
+};
+
+WeightSums sum_weights_and_squares(const float* logw, std::size_t n, float shift) {
+  return par::reduce(
+      n, kSumBlock, WeightSums{},
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        std::array<double, par::kVectorWidth> w{};  // fixed lanes, as in lane_sum
+        std::array<double, par::kVectorWidth> w2{};
+        const auto add = [&](std::size_t i, std::size_t lane) {
+          const float v = logw[i];
+          const auto e = static_cast<double>(fast_exp((v == v ? v : kNegInf) - shift));
+          w[lane] += e;
+          w2[lane] += e * e;
+        };
+        std::size_t i = begin;
+        for (; i + par::kVectorWidth <= end; i += par::kVectorWidth) {
+          for (std::size_t k = 0; k < par::kVectorWidth; ++k) add(i + k, k);
+        }
+        for (std::size_t k = 0; i < end; ++i, ++k) add(i, k);
+        WeightSums sums;
+        for (std::size_t k = 0; k < par::kVectorWidth; ++k) {
+          sums.w += w[k];
+          sums.w_squared += w2[k];
+        }
+        return sums;
+      },
+      /*join=*/
+      [](WeightSums a, WeightSums b) {
+        return WeightSums{a.w + b.w, a.w_squared + b.w_squared};
+      });
+}
+
 void fill_uniform(float* logw, std::size_t n, std::size_t grain) {
   const float uniform = -std::log(static_cast<float>(n));
   par::for_each_chunk(n, grain, [&](std::size_t begin, std::size_t end) {
@@ -85,7 +123,8 @@ NormalizeResult normalize_log_weights(float* logw, std::size_t n, std::size_t gr
     constexpr double kNegInfD = -std::numeric_limits<double>::infinity();
     return {WeightStatus::kDegenerate, kNegInfD, kNegInfD, static_cast<double>(n)};
   }
-  const double total = sum_exp(logw, n, max_logw, 1);  // >= 1: the max contributes exp(0)
+  const WeightSums sums = sum_weights_and_squares(logw, n, max_logw);
+  const double total = sums.w;  // >= 1: the max contributes exp(0)
   const double log_total = static_cast<double>(max_logw) + std::log(total);
   // Subtract in two steps: v - max is exact for nearby values (Sterbenz), and log(total) is a
   // small number with full float precision; rounding log_total itself to float would scale
@@ -100,7 +139,8 @@ NormalizeResult normalize_log_weights(float* logw, std::size_t n, std::size_t gr
   r.status = WeightStatus::kOk;
   r.log_total = log_total;
   r.log_mean_likelihood = log_total - log_n;
-  r.effective_sample_size = log_weights_ess(logw, n);
+  // 1 / sum of (w_i / total)^2 (Thrun section 4.3.4), from the same pass as the total.
+  r.effective_sample_size = total * total / sums.w_squared;
   return r;
 }
 
