@@ -143,11 +143,12 @@ Int exclusive_scan(std::size_t n, std::size_t grain, Int* out, const Value& valu
   std::vector<Int> block_start((n + step - 1) / step);
   for_each_chunk(n, step, [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; b += step) {
+      // Two loops: value() alone vectorizes; fused with the running sum it stayed scalar.
+      const std::size_t block_end = std::min(end, b + step);
+      Int* const block = out;
+      for (std::size_t i = b; i < block_end; ++i) block[i] = static_cast<Int>(value(i));
       Int sum{0};
-      for (std::size_t i = b; i < std::min(end, b + step); ++i) {
-        out[i] = static_cast<Int>(value(i));
-        sum += out[i];
-      }
+      for (std::size_t i = b; i < block_end; ++i) sum += block[i];
       block_start[b / step] = sum;
     }
   });
