@@ -1,8 +1,10 @@
 // PoseSummarizer: the whole-set estimate and the clusters in five passes over the particles.
 //  1. max log-weight (parallel reduction);
 //  2. weights exp(logw - max), bin keys and the whole-set first moments (parallel, fixed blocks);
-//  3. bin numbers in order of first particle (serial, one flat-map lookup per change of key:
-//     resampled copies sit next to each other, so consecutive particles mostly share a bin);
+//  3. bin numbers in order of first particle: each block of pass 2 numbers its own keys (one
+//     flat-map lookup per change of key: resampled copies sit next to each other, so
+//     consecutive particles mostly share a bin); a serial merge then numbers each block's
+//     distinct keys in block order, which is the order of first particle;
 //  4. cluster first moments (skipped for a single cluster: they are the whole-set moments);
 //  5. second moments about the whole-set and cluster means (parallel, fixed blocks).
 // Sums run over a fixed block grid, so every result is bit-identical for any thread count.
@@ -129,13 +131,22 @@ std::vector<Moments> add_vectors(std::vector<Moments> a, const std::vector<Momen
 
 }  // namespace
 
+// The bins of one block of particles, numbered in the order of their first particle there.
+struct BlockBins {
+  detail::BinMap local;               // key -> number within the block
+  std::vector<std::uint64_t> keys;    // block number -> key
+  std::vector<std::uint32_t> first;   // block number -> its first particle
+  std::vector<std::uint32_t> global;  // block number -> bin number over the whole set
+};
+
 struct PoseSummarizer::State {
   explicit State(const ClusterConfig& c) : index(c) {}
 
   detail::BinIndex index;
   std::vector<float> weight;             // exp(logw - max) per particle
   std::vector<std::uint64_t> key;        // bin key per particle
-  std::vector<std::uint32_t> bin;        // bin number per particle
+  std::vector<std::uint32_t> bin;        // bin number per particle (first within its block)
+  std::vector<BlockBins> blocks;         // per block of kSumBlock particles
   detail::BinMap bins;                   // key -> bin number
   std::vector<detail::BinCoord> coords;  // bin number -> coordinates
   std::vector<std::uint32_t> label;      // bin number -> cluster
@@ -143,7 +154,9 @@ struct PoseSummarizer::State {
 
   void summarize(const ConstParticleView& p, bool with_clusters);
   FirstMoments weigh_and_key(const ConstParticleView& p, float max_logw, bool with_keys);
+  void number_block(std::size_t begin, std::size_t end);
   void number_bins(const ConstParticleView& p);
+  void renumber_particles(std::size_t n);
   std::vector<FirstMoments> cluster_first(const ConstParticleView& p, std::size_t k) const;
   std::vector<SecondMoments> cluster_second(const ConstParticleView& p) const;
   SecondMoments overall_second(const ConstParticleView& p) const;
@@ -167,26 +180,57 @@ FirstMoments PoseSummarizer::State::weigh_and_key(const ConstParticleView& p, fl
           for (std::size_t i = begin; i < end; ++i) {
             keys[i] = bin_index.key_of(x[i], y[i], theta[i]);
           }
+          number_block(begin, end);
         }
         return first_moments(p, weight.data(), begin, end);
       },
       /*join=*/[](const FirstMoments& a, const FirstMoments& b) { return a + b; });
 }
 
-void PoseSummarizer::State::number_bins(const ConstParticleView& p) {
-  bins.clear();
-  coords.clear();
+void PoseSummarizer::State::number_block(std::size_t begin, std::size_t end) {
+  BlockBins& block = blocks[begin / kSumBlock];
+  block.local.clear();
+  block.keys.clear();
+  block.first.clear();
   std::uint64_t last_key = 0;
   std::uint32_t last_bin = detail::BinMap::kAbsent;
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     if (key[i] != last_key || last_bin == detail::BinMap::kAbsent) {
       last_key = key[i];
-      last_bin = bins.insert(last_key);
-      if (last_bin == coords.size()) coords.push_back(index.coord(p.x[i], p.y[i], p.theta[i]));
+      last_bin = block.local.insert(last_key);
+      if (last_bin == block.keys.size()) {
+        block.keys.push_back(last_key);
+        block.first.push_back(static_cast<std::uint32_t>(i));
+      }
     }
     bin[i] = last_bin;
   }
+}
+
+void PoseSummarizer::State::number_bins(const ConstParticleView& p) {
+  bins.clear();
+  coords.clear();
+  for (std::size_t b = 0; b * kSumBlock < p.size(); ++b) {
+    BlockBins& block = blocks[b];
+    block.global.resize(block.keys.size());
+    for (std::size_t q = 0; q < block.keys.size(); ++q) {
+      block.global[q] = bins.insert(block.keys[q]);
+      if (block.global[q] == coords.size()) {
+        const std::uint32_t i = block.first[q];
+        coords.push_back(index.coord(p.x[i], p.y[i], p.theta[i]));
+      }
+    }
+  }
   label = detail::label_bins(coords, bins, index.theta_bins());
+}
+
+void PoseSummarizer::State::renumber_particles(std::size_t n) {
+  par::for_each_chunk(n, kSumBlock, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; b += kSumBlock) {
+      const std::vector<std::uint32_t>& global = blocks[b / kSumBlock].global;
+      for (std::size_t i = b; i < std::min(end, b + kSumBlock); ++i) bin[i] = global[bin[i]];
+    }
+  });
 }
 
 std::vector<FirstMoments> PoseSummarizer::State::cluster_first(const ConstParticleView& p,
@@ -237,6 +281,7 @@ void PoseSummarizer::State::summarize(const ConstParticleView& p, bool with_clus
   if (with_clusters) {
     key.resize(p.size());
     bin.resize(p.size());
+    blocks.resize((p.size() + kSumBlock - 1) / kSumBlock);
   }
   const FirstMoments first = weigh_and_key(p, max_logw, with_clusters);
   out.overall.mean = first.mean();
@@ -251,6 +296,7 @@ void PoseSummarizer::State::summarize(const ConstParticleView& p, bool with_clus
     out.clusters.assign(1, out.overall);
     return;
   }
+  renumber_particles(p.size());
   const std::vector<FirstMoments> first_c = cluster_first(p, k);
   out.clusters.resize(k);
   for (std::size_t c = 0; c < k; ++c) out.clusters[c].mean = first_c[c].mean();

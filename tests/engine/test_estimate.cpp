@@ -74,6 +74,48 @@ TEST(Cluster, SeparatesBlobsAndPicksTheHeaviest) {
   EXPECT_EQ(best_cluster({}), nullptr);
 }
 
+// Three blobs 20 m apart, each spread over many bins, their particles interleaved so that every
+// block of the summarizer (2048 particles) holds bins of all three and bins recur across
+// blocks: the per-block numbering and its merge must still give one cluster per blob, in order
+// of first particle, on any thread count.
+TEST(Cluster, ManyBlocksKeepBlobsApartInOrderOfFirstParticle) {
+  constexpr std::size_t kN = 3 * 7001 + 2;
+  ParticleStore store(kN);
+  const ParticleView p = store.view();
+  const double blob_x[3] = {20.0, 40.0, 0.0};  // not in order of x
+  std::size_t count[3] = {};
+  double weight[3] = {};
+  double sum_x[3] = {};
+  for (std::size_t i = 0; i < kN; ++i) {
+    const std::size_t b = (i * 7 / 5) % 3;
+    const double spread = 0.0013 * static_cast<double>(i % 997);  // up to 1.3 m: many bins
+    const double w = 1.0 + 0.5 * std::sin(0.01 * static_cast<double>(i));
+    set(p, i, {blob_x[b] + spread, 3.0 - spread, 0.4 * spread}, w);
+    ++count[b];
+    weight[b] += w;
+    sum_x[b] += w * (blob_x[b] + spread);
+  }
+  const double total = weight[0] + weight[1] + weight[2];
+  std::vector<PoseEstimate> serial;
+  Executor(1)([&] { serial = cluster(p); });
+  ASSERT_EQ(serial.size(), 3U);
+  for (std::size_t c = 0; c < 3; ++c) {  // particles 0, 1, 2 are in blobs 0, 1, 2
+    const std::size_t b = c;
+    EXPECT_EQ(serial[c].count, count[b]) << "cluster " << c;
+    EXPECT_NEAR(serial[c].weight, weight[b] / total, 1e-9);
+    EXPECT_NEAR(serial[c].mean.x, sum_x[b] / weight[b], 1e-4);
+  }
+  std::vector<PoseEstimate> parallel;
+  const Executor ex(4);
+  ex([&] { parallel = cluster(p); });
+  ASSERT_EQ(parallel.size(), serial.size());
+  for (std::size_t c = 0; c < serial.size(); ++c) {
+    EXPECT_EQ(parallel[c].mean, serial[c].mean);
+    EXPECT_EQ(parallel[c].covariance, serial[c].covariance);
+    EXPECT_EQ(parallel[c].count, serial[c].count);
+  }
+}
+
 TEST(Cluster, ConnectsAcrossTheThetaWrapAndHonoursConnectivity) {
   ParticleStore store(3);
   const ParticleView p = store.view();
