@@ -23,15 +23,8 @@ void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::
                        .max_range = beams.range_max};
   caster_.cast(batch, expected);
 
-  const double range_max = beams.range_max;
-  for (std::size_t p = 0; p < count; ++p) {
-    const float* z_star = expected.data() + p * n_beams;
-    double log_likelihood = 0.0;
-    for (std::size_t b = 0; b < n_beams; ++b) {
-      log_likelihood += beam_log_likelihood(beams.range[b], z_star[b], range_max, params_.mixture);
-    }
-    particles.logw[begin + p] += static_cast<float>(params_.tempering * log_likelihood);
-  }
+  add_beam_log_likelihoods(beams.range, beams.range_max, expected, params_,
+                           {particles.logw + begin, count});
 }
 
 }  // namespace mote
