@@ -19,7 +19,8 @@ NAME = re.compile(
     r"BM_Localizer_Update/(?P<model>[a-z_]+)/(?P<setting>[a-z]+)/n:(?P<n>\d+)"
     r"/beams:(?P<beams>\d+)/threads:(?P<threads>\d+)")
 
-MACHINE = re.compile(r"BM_Machine_ComputeLoop/(?P<when>[a-z]+)/threads:(?P<threads>\d+)")
+MACHINE = re.compile(
+    r"BM_Machine_(?P<loop>[A-Za-z]+)/(?P<when>[a-z]+)/threads:(?P<threads>\d+)")
 
 MODELS = {"likelihood_field": "likelihood field", "beam": "beam model"}
 COLORS = {"likelihood_field": "tab:blue", "beam": "tab:red"}
@@ -32,8 +33,8 @@ MIN_SPEEDUP = 1.8
 
 
 def load_cases(path):
-    """The run's context, {(model, setting, n, beams, threads): entry}, {(when, threads): entry}
-    for the machine check, and whether the entries are medians."""
+    """The run's context, {(model, setting, n, beams, threads): entry},
+    {(loop, when, threads): entry} for the machine check, and whether the entries are medians."""
     data = json.loads(path.read_text())
     entries = data.get("benchmarks", [])
     medians = [e for e in entries if e.get("aggregate_name") == "median"]
@@ -47,7 +48,7 @@ def load_cases(path):
             key = (m["model"], m["setting"], int(m["n"]), int(m["beams"]), int(m["threads"]))
             cases[key] = e
         elif (m := MACHINE.match(name)) is not None:
-            machine[(m["when"], int(m["threads"]))] = e
+            machine[(m["loop"], m["when"], int(m["threads"]))] = e
     return data.get("context", {}), cases, machine, bool(medians)
 
 
@@ -198,15 +199,27 @@ def machine_lines(context, results, medians):
     return lines
 
 
+def loop_ratios(machine, loop):
+    """One machine-check loop's 2-thread/1-thread ratio at the start and end of the run."""
+    return [f"{ms(machine[(loop, when, 1)]) / ms(machine[(loop, when, 2)]):.2f} at the {when}"
+            for when in ("start", "end")
+            if (loop, when, 1) in machine and (loop, when, 2) in machine]
+
+
 def machine_check(machine):
-    """The compute loop's 2-thread/1-thread ratio at the start and end of the run."""
-    ratios = [f"{ms(machine[(when, 1)]) / ms(machine[(when, 2)]):.2f} at the {when}"
-              for when in ("start", "end") if (when, 1) in machine and (when, 2) in machine]
-    if not ratios:
+    """The machine-check loops' 2-thread/1-thread ratios."""
+    compute, vector = loop_ratios(machine, "ComputeLoop"), loop_ratios(machine, "VectorLoop")
+    if not compute and not vector:
         return []
-    return [f"- machine check (BM_Machine_ComputeLoop, pure compute, 2 threads / 1 thread): "
-            f"{', '.join(ratios)}. Below 2, other processes held a core, and no case's 2t/1t "
-            f"ratio can exceed what the machine gave."]
+    lines = ["- machine check, 2 threads / 1 thread (below 2, other processes held a core, and "
+             "no case's 2t/1t ratio can exceed what the machine gave):"]
+    if compute:
+        lines.append(f"  - BM_Machine_ComputeLoop (latency-bound): {', '.join(compute)}")
+    if vector:
+        lines.append(f"  - BM_Machine_VectorLoop (vector-throughput-bound; lower than the "
+                     f"compute loop means the threads share one core's vector units): "
+                     f"{', '.join(vector)}")
+    return lines
 
 
 def write_table(path, context, cases, machine, medians, results):
