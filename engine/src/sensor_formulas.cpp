@@ -38,7 +38,9 @@ double beam_log_likelihood(double z, double z_expected, double range_max,
            gaussian_density(z - z_expected, p.sigma_hit);  // eqs. 6.4-6.6
   }
   if (z >= 0.0 && z <= z_expected && z_expected > 0.0) {
-    const double eta = 1.0 / (1.0 - std::exp(-p.lambda_short * z_expected));  // eq. 6.9
+    // eq. 6.9. expm1, not 1 - exp: for lambda z* below 1e-16 the subtraction gives 0, and eta
+    // became inf (log p = +inf, or NaN with z_short = 0) for a particle touching a wall.
+    const double eta = -1.0 / std::expm1(-p.lambda_short * z_expected);
     sum += p.z_short * eta * p.lambda_short * std::exp(-p.lambda_short * z);  // eq. 6.7
   }
   return std::log(sum);

@@ -81,6 +81,16 @@ TEST(BeamLogLikelihood, IntegratesToOneOverTheRange) {
   EXPECT_NEAR(mass, 1.0, 1e-4);
 }
 
+TEST(BeamLogLikelihood, StaysFiniteForASensorTouchingAWall) {
+  // z* a hair above 0: eq. 6.9's normalizer 1 / (1 - exp(-lambda z*)) is about 1 / (lambda z*),
+  // large but finite, and the short-reading density z_short / z* with it.
+  MixtureParams p;
+  const double log_short = std::log(p.z_short / 1e-30);
+  EXPECT_NEAR(beam_log_likelihood(0.0, 1e-30, 10.0, p), log_short, 1e-9 * log_short);
+  p.z_short = 0.0;
+  EXPECT_TRUE(std::isfinite(beam_log_likelihood(0.0, 1e-30, 10.0, p)));
+}
+
 TEST(LikelihoodFieldDensity, IsTheBooksMixture) {
   const MixtureParams p{.z_hit = 0.8, .z_rand = 0.2, .sigma_hit = 0.1};
   for (double d : {0.0, 0.05, 0.1, 0.3, 2.0}) {
