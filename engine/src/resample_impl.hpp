@@ -71,6 +71,21 @@ bool resample_empty_total(S& store, std::size_t n_out, const FixedWeights& fw) {
   return true;
 }
 
+// The first comb tooth at or past C: tooth j (position min(j 2^32 + u, total - 1)) reaches C
+// exactly when j 2^32 + u >= C, as long as C < total; no tooth reaches C >= total. Output j
+// copies the largest i whose first tooth is at or before j, which is the serial sampler's i.
+inline std::size_t first_tooth(std::uint64_t c, std::uint64_t u, const FixedWeights& fw,
+                               std::size_t n_out) {
+  if (c >= fw.total) return n_out;
+  const std::uint64_t ahead = c > u ? c - u : 0;
+  return std::min<std::size_t>(n_out, static_cast<std::size_t>((ahead + kOne - 1) >> 32));
+}
+
+// Copies between this many and none are written without a data-dependent branch: the serial
+// sampler's inner loop stops after a random number of steps and mispredicted about once per
+// particle.
+inline constexpr std::size_t kUnrolledCopies = 4;
+
 template <class S>
 void systematic(S& store, std::size_t n_out, std::uint64_t seed, std::uint64_t step,
                 std::size_t grain) {
@@ -80,15 +95,22 @@ void systematic(S& store, std::size_t n_out, std::uint64_t seed, std::uint64_t s
   const std::uint64_t u = comb_offset(seed, step);
   const std::size_t n = store.size();
   const auto gather = store.gather(n_out);
-  // Parallel over chunks of outputs: each chunk finds the ancestor of its first tooth by binary
-  // search (the largest i with C_i <= tooth), then walks the pointer like the serial sampler.
-  // Both give the same i for every tooth, so the result is the serial one exactly.
-  par::for_each_chunk(n_out, grain, [&](std::size_t begin, std::size_t end) {
-    std::size_t i = ancestor_of(fw, n, tooth(begin, u, fw));
-    for (std::size_t j = begin; j < end; ++j) {
-      const std::uint64_t pos = tooth(j, u, fw);
-      while (fw.c[i + 1] <= pos) ++i;
-      gather(i, j);
+  // Parallel over chunks of ancestors: particle i fills outputs [first_tooth(C_i),
+  // first_tooth(C_{i+1})), so a chunk's outputs are known from its two ends and chunks never
+  // share an output. Usually all kUnrolledCopies slots from the first are written, and the
+  // surplus is overwritten by the following particles of the same chunk.
+  par::for_each_chunk(n, grain, [&](std::size_t begin, std::size_t end) {
+    const auto copy = gather;  // a local copy: its column pointers stay in registers
+    std::size_t j = first_tooth(fw.c[begin], u, fw, n_out);
+    const std::size_t j_end = first_tooth(fw.c[end], u, fw, n_out);
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t next = first_tooth(fw.c[i + 1], u, fw, n_out);
+      if (next - j <= kUnrolledCopies && j + kUnrolledCopies <= j_end) {
+        for (std::size_t k = 0; k < kUnrolledCopies; ++k) copy(i, j + k);
+      } else {
+        for (std::size_t k = j; k < next; ++k) copy(i, k);
+      }
+      j = next;
     }
   });
   store.commit(n_out);
