@@ -43,12 +43,13 @@ class BeamModel {
 static_assert(SensorModel<BeamModel>);
 
 /// The beam model's scan log-likelihood once the expected ranges are cast: adds
-/// tempering * sum_b log p(ranges[b] | expected[i * B + b]) to logw[i] for every particle i,
-/// with B = ranges.size() and expected particle-major as RayCaster::cast fills it. Computes what
-/// summing beam_log_likelihood does, in float and vectorized over particles: each beam's term is
-/// within 1e-6 * (1 + |term|) of the double formula. Expected ranges outside [0, range_max]
-/// (NaN for a particle with a non-finite pose) take the double formula itself.
-/// Throws ConfigError when expected.size() != logw.size() * ranges.size().
+/// tempering * sum_b log p(ranges[b] | expected[i * B + b]) (Thrun table 6.1) to logw[i] for
+/// every particle i, with B = ranges.size() and expected particle-major as RayCaster::cast fills
+/// it. Computes what summing beam_log_likelihood does, in float and vectorized over particles:
+/// each beam's term is within 1e-6 * (1 + |term|) of the double formula. Expected ranges outside
+/// [0, range_max] (NaN for a particle with a non-finite pose, whose logw becomes NaN unless every
+/// reading is max-range) and mixtures outside float's comfortable range (z_rand near 0) take the
+/// double formula itself. Throws ConfigError when expected.size() != logw.size() * ranges.size().
 void add_beam_log_likelihoods(std::span<const float> ranges, float range_max,
                               std::span<const float> expected, const BeamModelParams& params,
                               std::span<float> logw);
