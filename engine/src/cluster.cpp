@@ -1,39 +1,95 @@
-// Clusters of connected occupied (x, y, theta) bins, found by a breadth-first search over the
-// occupied bins (amcl builds the same clusters from its kd-tree leaves). Bins are numbered in
-// order of their first particle, and searches start from bins in that order, so cluster
-// numbering depends on the particle order only.
+// Clusters of connected occupied (x, y, theta) bins (amcl builds the same clusters from its
+// kd-tree leaves). Bins are numbered in order of their first particle; a cluster's number is
+// the rank of its lowest bin number, so cluster numbering depends on the particle order only.
+//
+// Connected components by union-find, parallel over the bins: every bin is united with each
+// occupied neighbour, and a union always links the root with the higher number under the other,
+// so each component's root ends up being its lowest bin whatever the order of the unions. The
+// numbering is therefore the one a breadth-first search seeded in bin order gives, on any
+// thread count.
+
+#include <atomic>
+#include <memory>
 
 #include "cluster_labels.hpp"
+#include "mote/core/parallel.hpp"
 
 namespace mote::detail {
 
-std::vector<std::uint32_t> label_bins(const std::vector<BinCoord>& bins, const BinMap& id_of,
-                                      std::int32_t nt) {
-  constexpr std::uint32_t kUnlabeled = BinMap::kAbsent;
-  std::vector<std::uint32_t> label(bins.size(), kUnlabeled);
+namespace {
+
+// Bins per parallel task: each bin looks up its 26 neighbours.
+constexpr std::size_t kBinGrain = 1024;
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(std::make_unique<std::atomic<std::uint32_t>[]>(n)) {
+    for (std::size_t i = 0; i < n; ++i) parent_[i].store(static_cast<std::uint32_t>(i));
+  }
+
+  // The root of x, halving the path on the way. Parents only ever point to lower bins and a
+  // node's ancestors only gain new ones at the top, so storing an ancestor seen a moment ago is
+  // always valid, whatever other threads do meanwhile.
+  std::uint32_t root(std::uint32_t x) {
+    std::uint32_t p = parent_[x].load(std::memory_order_acquire);
+    while (p != x) {
+      const std::uint32_t grandparent = parent_[p].load(std::memory_order_acquire);
+      parent_[x].store(grandparent, std::memory_order_release);
+      x = p;
+      p = grandparent;
+    }
+    return x;
+  }
+
+  // Links the higher of the two roots under the lower; retries when another thread linked
+  // that root first.
+  void unite(std::uint32_t a, std::uint32_t b) {
+    while (true) {
+      std::uint32_t ra = root(a);
+      std::uint32_t rb = root(b);
+      if (ra == rb) return;
+      if (ra < rb) std::swap(ra, rb);
+      std::uint32_t expected = ra;
+      if (parent_[ra].compare_exchange_strong(expected, rb, std::memory_order_acq_rel)) return;
+    }
+  }
+
+ private:
+  std::unique_ptr<std::atomic<std::uint32_t>[]> parent_;
+};
+
+void unite_neighbours(const std::vector<BinCoord>& bins, const BinMap& id_of, std::int32_t nt,
+                      std::uint32_t bin, UnionFind& sets) {
   const std::int32_t dt_max = nt >= 3 ? 1 : 0;  // with 1 or 2 theta bins every pair touches
-  std::vector<std::uint32_t> queue;  // FIFO of the breadth-first search: read position `head`
-  queue.reserve(bins.size());
-  std::uint32_t next = 0;
-  for (std::uint32_t seed = 0; seed < bins.size(); ++seed) {
-    if (label[seed] != kUnlabeled) continue;
-    queue.assign(1, seed);
-    label[seed] = next;
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const BinCoord b = bins[queue[head]];
-      for (std::int32_t dx = -1; dx <= 1; ++dx) {
-        for (std::int32_t dy = -1; dy <= 1; ++dy) {
-          for (std::int32_t dt = -dt_max; dt <= dt_max; ++dt) {
-            const BinCoord n{b.x + dx, b.y + dy, ((b.t + dt) % nt + nt) % nt};  // theta wraps
-            const std::uint32_t id = id_of.find(BinIndex::key(n));
-            if (id == BinMap::kAbsent || label[id] != kUnlabeled) continue;
-            label[id] = next;
-            queue.push_back(id);
-          }
-        }
+  const BinCoord b = bins[bin];
+  for (std::int32_t dx = -1; dx <= 1; ++dx) {
+    for (std::int32_t dy = -1; dy <= 1; ++dy) {
+      for (std::int32_t dt = -dt_max; dt <= dt_max; ++dt) {
+        const BinCoord n{b.x + dx, b.y + dy, ((b.t + dt) % nt + nt) % nt};  // theta wraps
+        const std::uint32_t id = id_of.find(BinIndex::key(n));
+        if (id < bin) sets.unite(bin, id);  // each edge once; kAbsent is above any bin
       }
     }
-    ++next;
+  }
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> label_bins(const std::vector<BinCoord>& bins, const BinMap& id_of,
+                                      std::int32_t nt) {
+  const std::size_t n = bins.size();
+  UnionFind sets(n);
+  par::for_each_chunk(n, kBinGrain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      unite_neighbours(bins, id_of, nt, static_cast<std::uint32_t>(i), sets);
+    }
+  });
+  // Roots in bin order get 0, 1, 2, ...; every other bin's root is lower, so already numbered.
+  std::vector<std::uint32_t> label(n);
+  std::uint32_t next = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t r = sets.root(i);
+    label[i] = r == i ? next++ : label[r];
   }
   return label;
 }

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "mote/engine/executor.hpp"
 
@@ -113,6 +116,66 @@ TEST(Cluster, ManyBlocksKeepBlobsApartInOrderOfFirstParticle) {
     EXPECT_EQ(parallel[c].mean, serial[c].mean);
     EXPECT_EQ(parallel[c].covariance, serial[c].covariance);
     EXPECT_EQ(parallel[c].count, serial[c].count);
+  }
+}
+
+// Occupied cells of a 96 x 96 grid of 0.5 m bins at density 0.35 (below percolation: clusters of
+// every size and shape, many of them), two particles per cell at its centre in a shuffled order.
+// The clusters must be the 8-connected components of the cells, in order of first particle, on
+// 1 and 4 threads.
+TEST(Cluster, MatchesConnectedComponentsOfARandomGrid) {
+  constexpr int kSide = 96;
+  std::mt19937_64 rng(7);
+  std::vector<int> cells;
+  for (int c = 0; c < kSide * kSide; ++c) {
+    if (std::uniform_real_distribution<>(0.0, 1.0)(rng) < 0.35) cells.push_back(c);
+  }
+  std::vector<int> order;
+  for (const int c : cells) order.insert(order.end(), {c, c});
+  std::shuffle(order.begin(), order.end(), rng);
+  // Reference: breadth-first search over the occupied cells; component ids by first particle.
+  std::vector<int> component(kSide * kSide, -1);
+  std::vector<std::size_t> expected_count;
+  for (const int start : order) {
+    if (component[static_cast<std::size_t>(start)] >= 0) continue;
+    const int id = static_cast<int>(expected_count.size());
+    expected_count.push_back(0);
+    std::vector<int> queue{start};
+    component[static_cast<std::size_t>(start)] = id;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const int cx = queue[head] % kSide;
+      const int cy = queue[head] / kSide;
+      for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+          const int nx = cx + dx;
+          const int ny = cy + dy;
+          if (nx < 0 || ny < 0 || nx >= kSide || ny >= kSide) continue;
+          const auto n = static_cast<std::size_t>(ny * kSide + nx);
+          if (component[n] != -1 || !std::binary_search(cells.begin(), cells.end(), int(n))) {
+            continue;
+          }
+          component[n] = id;
+          queue.push_back(static_cast<int>(n));
+        }
+      }
+    }
+  }
+  for (const int c : order) ++expected_count[static_cast<std::size_t>(component[c])];
+  ASSERT_GT(expected_count.size(), 64U);  // past the summarizer's per-block cluster sums
+
+  ParticleStore store(order.size());
+  const ParticleView p = store.view();
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    set(p, i, {0.5 * (order[i] % kSide) + 0.25, 0.5 * (order[i] / kSide) + 0.25, 0.05}, 1.0);
+  }
+  for (const int threads : {1, 4}) {
+    std::vector<PoseEstimate> clusters;
+    const Executor ex(threads);
+    ex([&] { clusters = cluster(p); });
+    ASSERT_EQ(clusters.size(), expected_count.size()) << threads << " threads";
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+      ASSERT_EQ(clusters[c].count, expected_count[c]) << "cluster " << c << ", " << threads;
+    }
   }
 }
 

@@ -45,7 +45,8 @@ struct ClusterConfig {
 
 /// Groups particles into clusters of connected occupied bins and summarizes each; clusters are
 /// ordered by their first particle index, so the output is deterministic. O(N): parallel passes
-/// for weights, bin keys and moments, one serial pass numbering the bins (a flat hash map).
+/// for weights, bin keys, bin numbers within blocks, cluster labels (union-find) and moments; one
+/// serial merge of the blocks' distinct bins (a flat hash map).
 [[nodiscard]] std::vector<PoseEstimate> cluster(const ConstParticleView& particles,
                                                 const ClusterConfig& config = {});
 
