@@ -160,7 +160,9 @@ TEST(Cluster, MatchesConnectedComponentsOfARandomGrid) {
       }
     }
   }
-  for (const int c : order) ++expected_count[static_cast<std::size_t>(component[c])];
+  for (const int c : order) {
+    ++expected_count[static_cast<std::size_t>(component[static_cast<std::size_t>(c)])];
+  }
   ASSERT_GT(expected_count.size(), 64U);  // past the summarizer's per-block cluster sums
 
   ParticleStore store(order.size());
