@@ -165,18 +165,27 @@ TEST(Cluster, MatchesConnectedComponentsOfARandomGrid) {
   }
   ASSERT_GT(expected_count.size(), 64U);  // past the summarizer's per-block cluster sums
 
-  ParticleStore store(order.size());
-  const ParticleView p = store.view();
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    set(p, i, {0.5 * (order[i] % kSide) + 0.25, 0.5 * (order[i] / kSide) + 0.25, 0.05}, 1.0);
-  }
-  for (const int threads : {1, 4}) {
-    std::vector<PoseEstimate> clusters;
-    const Executor ex(threads);
-    ex([&] { clusters = cluster(p); });
-    ASSERT_EQ(clusters.size(), expected_count.size()) << threads << " threads";
-    for (std::size_t c = 0; c < clusters.size(); ++c) {
-      ASSERT_EQ(clusters[c].count, expected_count[c]) << "cluster " << c << ", " << threads;
+  // Once as it is, and once with a last particle 100 km away: its own cluster, and a bounding
+  // box too large for the labelling's dense bin array, so the hash-map lookups run too.
+  for (const bool far_particle : {false, true}) {
+    ParticleStore store(order.size() + (far_particle ? 1 : 0));
+    const ParticleView p = store.view();
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      set(p, i, {0.5 * (order[i] % kSide) + 0.25, 0.5 * (order[i] / kSide) + 0.25, 0.05}, 1.0);
+    }
+    std::vector<std::size_t> expected = expected_count;
+    if (far_particle) {
+      set(p, order.size(), {1.0e5, 0.25, 0.05}, 1.0);
+      expected.push_back(1);
+    }
+    for (const int threads : {1, 4}) {
+      std::vector<PoseEstimate> clusters;
+      const Executor ex(threads);
+      ex([&] { clusters = cluster(p); });
+      ASSERT_EQ(clusters.size(), expected.size()) << threads << " threads, far " << far_particle;
+      for (std::size_t c = 0; c < clusters.size(); ++c) {
+        ASSERT_EQ(clusters[c].count, expected[c]) << "cluster " << c << ", " << threads;
+      }
     }
   }
 }
