@@ -125,7 +125,7 @@ void systematic_serial(S& store, std::size_t n_out, std::uint64_t seed, std::uin
   const auto gather = store.gather(n_out);
   std::size_t i = 0;
   for (std::size_t j = 0; j < n_out; ++j) {
-    const std::uint64_t pos = std::min(j * kOne + u, fw.total - 1);  // the comb tooth
+    const std::uint64_t pos = tooth(j, u, fw);
     while (fw.c[i + 1] <= pos) ++i;  // Thrun table 4.4, lines 7-9 (c[N] = total > pos)
     gather(i, j);
   }

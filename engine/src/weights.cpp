@@ -18,22 +18,6 @@ constexpr float kNegInf = -std::numeric_limits<float>::infinity();
 // tree, and with it every rounding, is the same for any grain as well as any thread count.
 constexpr std::size_t kSumBlock = 2048;
 
-// Sum of f(i) over [begin, end) in 16 fixed double lanes (lane = i mod 16, then lanes added in
-// order): the grouping depends only on the indices, so vector and scalar code agree, and the
-// lane loop vectorizes where a single accumulator could not.
-template <class F>
-double lane_sum(std::size_t begin, std::size_t end, const F& f) {
-  std::array<double, par::kVectorWidth> acc{};
-  std::size_t i = begin;
-  for (; i + par::kVectorWidth <= end; i += par::kVectorWidth) {
-    for (std::size_t k = 0; k < par::kVectorWidth; ++k) acc[k] += static_cast<double>(f(i + k));
-  }
-  for (std::size_t k = 0; i < end; ++i, ++k) acc[k] += static_cast<double>(f(i));
-  double total = 0.0;
-  for (const double a : acc) total += a;
-  return total;
-}
-
 float max_log_weight(const float* logw, std::size_t n, std::size_t grain) {
   return par::reduce(
       n, grain, kNegInf,
@@ -50,22 +34,11 @@ float max_log_weight(const float* logw, std::size_t n, std::size_t grain) {
       /*join=*/[](float a, float b) { return std::max(a, b); });
 }
 
-double sum_exp(const float* logw, std::size_t n, float shift, int power) {
-  const auto fpower = static_cast<float>(power);
-  return par::reduce(
-      n, kSumBlock, 0.0,
-      /*partial=*/
-      [&](std::size_t begin, std::size_t end) {
-        return lane_sum(begin, end, [&](std::size_t i) {
-          const float v = logw[i];
-          return fast_exp(fpower * ((v == v ? v : kNegInf) - shift));  // NaN -> weight 0
-        });
-      },
-      /*join=*/[](double a, double b) { return a + b; });
-}
-
 // Sums of w_i = exp(logw_i - shift) and of w_i^2 in one pass (NaN -> weight 0): what
 // normalization needs for the total and, through w_i / total, for the effective sample size.
+// Each sum runs in 16 fixed double lanes (lane = i mod 16, then lanes added in order): the
+// grouping depends only on the indices, so vector and scalar code agree, and the lane loop
+// vectorizes where a single accumulator could not.
 struct WeightSums {
   double w = 0.0;
   double w_squared = 0.0;
@@ -76,7 +49,7 @@ WeightSums sum_weights_and_squares(const float* logw, std::size_t n, float shift
       n, kSumBlock, WeightSums{},
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
-        std::array<double, par::kVectorWidth> w{};  // fixed lanes, as in lane_sum
+        std::array<double, par::kVectorWidth> w{};
         std::array<double, par::kVectorWidth> w2{};
         const auto add = [&](std::size_t i, std::size_t lane) {
           const float v = logw[i];
@@ -146,7 +119,7 @@ NormalizeResult normalize_log_weights(float* logw, std::size_t n, std::size_t gr
 
 double log_weights_ess(const float* logw, std::size_t n) {
   if (n == 0) return 0.0;
-  const double sum_sq = sum_exp(logw, n, 0.0F, 2);  // sum of w_i^2 = exp(2 logw_i)
+  const double sum_sq = sum_weights_and_squares(logw, n, 0.0F).w_squared;  // sum of w_i^2
   return sum_sq > 0.0 ? 1.0 / sum_sq : static_cast<double>(n);
 }
 
