@@ -85,7 +85,7 @@ struct RayCaster::Impl {
     const std::vector<detail::WallSegment> walls = detail::wall_segments(mask);
     wall_count = walls.size();
     scene = rtcNewScene(detail::embree_device());
-    // No RTC_SCENE_FLAG_ROBUST: it cost 20-30% per ray, and it was only needed while each wall
+    // No RTC_SCENE_FLAG_ROBUST: it cost 10-28% per ray, and it was only needed while each wall
     // was a quad whose two triangles met in the middle of the wall (see add_walls).
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
     if (!walls.empty()) add_walls(scene, walls);
