@@ -1,12 +1,12 @@
 // KLD-sampling. Fox (2003) grows the sample while drawing it: after each draw from the weighted
-// set, update k and stop once n(k) samples exist. Here the count is computed first, from the
-// bins the current weighted set occupies, and then exactly n(k) particles are drawn by one
-// systematic pass. Statistically the two agree to first order: Fox's k is the number of bins
-// hit by draws from the weighted set, and the support of the weighted set (every bin holding a
-// particle) is what those draws converge to as n grows, so k here is an upper bound of the
-// sequential k for the same set (bins holding only negligible weight are counted too). The
-// bound errs on the side of more particles, i.e. on the safe side of the KL guarantee, and it
-// lets the draw be one parallel, deterministic systematic pass instead of a sequential loop.
+// set, update k (the bins the draws so far occupy) and stop once n >= n(k) samples exist. A
+// systematic draw has no order in which to stop, so the same rule runs on whole draws: draw
+// n = min_particles, count the bins its ancestors occupy (known from the fixed-point prefix sum
+// alone, before anything is gathered), and if n(k) > n draw again with n(k) teeth, until the
+// draw is large enough for its own bins. Each round is deterministic, so the count is too.
+// Counting the bins of the whole weighted set instead (its support) counts every bin holding a
+// negligible weight, such as each scattered recovery particle, and grows the set where Fox's
+// rule would not.
 
 #include "mote/engine/kld.hpp"
 
@@ -19,6 +19,7 @@
 #include "mote/core/parallel.hpp"
 #include "mote/engine/fast_math.hpp"
 #include "mote/engine/resample.hpp"
+#include "resample_impl.hpp"
 
 namespace mote {
 
@@ -96,10 +97,17 @@ std::uint64_t KldBins::bin_of(float x, float y, float theta) const noexcept {
 }
 
 std::size_t KldBins::count(const ConstParticleView& p, std::size_t grain) {
+  return count_where(
+      p, [](std::size_t) { return true; }, grain);
+}
+
+template <class Keep>
+std::size_t KldBins::count_where(const ConstParticleView& p, const Keep& keep, std::size_t grain) {
   std::fill(words_.begin(), words_.end(), 0);
   std::uint64_t* words = words_.data();
   par::for_each_chunk(p.size(), grain, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
+      if (!keep(i)) continue;
       const std::uint64_t bin = bin_of(p.x[i], p.y[i], p.theta[i]);
       std::atomic_ref<std::uint64_t> word(words[bin >> 6]);
       const std::uint64_t bit = std::uint64_t{1} << (bin & 63);
@@ -127,9 +135,55 @@ std::size_t kld_sample_count(const ConstParticleView& particles, KldBins& bins,
   return kld_sample_count(bins.count(particles, grain), config);
 }
 
+namespace {
+
+// The pose store's log-weights and prefix-sum scratch, as detail::fixed_point_weights reads them.
+struct WeightColumn {
+  ParticleStore& store;
+  [[nodiscard]] std::size_t size() const { return store.size(); }
+  [[nodiscard]] const float* log_weights() const { return store.view().logw; }
+  [[nodiscard]] std::uint64_t* scratch(int which) const { return store.scratch(which); }
+};
+
+// Draw rounds at most: each round that grows multiplies n by about n(k) / n, which is 10 and
+// more for a spread-out set (k near n, n(k) near k / (2 epsilon)), so a handful reach
+// max_particles from min_particles.
+constexpr int kMaxDrawRounds = 16;
+
+}  // namespace
+
+std::size_t KldBins::count_drawn(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
+                                 std::uint64_t step, std::size_t grain) {
+  WeightColumn column{store};
+  const detail::FixedWeights fw = detail::fixed_point_weights(column, n_out, grain);
+  if (fw.total == 0) return count(std::as_const(store).view(), grain);
+  const std::uint64_t u = detail::comb_offset(seed, step);
+  // Particle i is drawn when a comb tooth falls in [C_i, C_i+1), as in detail::systematic.
+  return count_where(
+      std::as_const(store).view(),
+      [&](std::size_t i) {
+        return detail::first_tooth(fw.c[i + 1], u, fw, n_out) >
+               detail::first_tooth(fw.c[i], u, fw, n_out);
+      },
+      grain);
+}
+
+std::size_t kld_draw_count(ParticleStore& store, KldBins& bins, const KldConfig& config,
+                           std::uint64_t seed, std::uint64_t step, std::size_t grain) {
+  if (config.min_particles == config.max_particles) return config.max_particles;
+  std::size_t n = config.min_particles;
+  for (int round = 0; round < kMaxDrawRounds && n < config.max_particles; ++round) {
+    const std::size_t wanted =
+        kld_sample_count(bins.count_drawn(store, n, seed, step, grain), config);
+    if (wanted <= n) break;
+    n = wanted;
+  }
+  return n;
+}
+
 std::size_t resample_kld_systematic(ParticleStore& store, KldBins& bins, const KldConfig& config,
                                     std::uint64_t seed, std::uint64_t step, std::size_t grain) {
-  const std::size_t n = kld_sample_count(store.view(), bins, config, grain);
+  const std::size_t n = kld_draw_count(store, bins, config, seed, step, grain);
   resample_systematic(store, n, seed, step, grain);
   return n;
 }

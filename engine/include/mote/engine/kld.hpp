@@ -49,6 +49,12 @@ class KldBins {
   [[nodiscard]] std::size_t count(const ConstParticleView& particles,
                                   std::size_t grain = kDefaultGrain);
 
+  /// Number of distinct bins occupied by the particles that a systematic draw of n_out
+  /// (resample_systematic with the same seed and step) copies at least once: the k of Fox's
+  /// sequential rule for that draw. The store's weights must be normalized.
+  [[nodiscard]] std::size_t count_drawn(ParticleStore& store, std::size_t n_out, std::uint64_t seed,
+                                        std::uint64_t step, std::size_t grain = kDefaultGrain);
+
   /// The bin index of a pose (for tests and clustering).
   [[nodiscard]] std::uint64_t bin_of(float x, float y, float theta) const noexcept;
   /// Number of bins along x, y and theta.
@@ -57,22 +63,32 @@ class KldBins {
   [[nodiscard]] std::size_t ntheta() const noexcept { return nt_; }
 
  private:
+  template <class Keep>
+  std::size_t count_where(const ConstParticleView& particles, const Keep& keep, std::size_t grain);
+
   Bounds2 region_;
   float inv_x_, inv_y_, inv_t_;
   std::size_t nx_, ny_, nt_;
   std::vector<std::uint64_t> words_;
 };
 
-/// k from the bins occupied by the current particles, then n from kld_sample_count (no bin
-/// count when min_particles == max_particles: n is that count). Combine
-/// with resample_systematic(store, n, ...): see kld.cpp for why this order is sound.
+/// k from the bins occupied by the current particles (the support of the weighted set), then n
+/// from kld_sample_count (no bin count when min_particles == max_particles: n is that count).
+/// An upper bound of Fox's count; kld_draw_count is the rule itself.
 [[nodiscard]] std::size_t kld_sample_count(const ConstParticleView& particles, KldBins& bins,
                                            const KldConfig& config,
                                            std::size_t grain = kDefaultGrain);
 
-/// KLD-sampling with one systematic pass: n = kld_sample_count(current set) and then
-/// resample_systematic(store, n, seed, step, grain) (see kld.cpp for the statistics of this
-/// order). The store's weights must be normalized. Returns n.
+/// Fox's sequential rule on systematic draws (kld.cpp): the smallest n in the sequence
+/// n_0 = min_particles, n_{r+1} = kld_sample_count(k(n_r)) with n >= kld_sample_count(k(n)),
+/// where k(n) = bins.count_drawn(store, n, seed, step); within [min_particles, max_particles].
+/// The store's weights must be normalized. Deterministic for any thread count and grain.
+[[nodiscard]] std::size_t kld_draw_count(ParticleStore& store, KldBins& bins,
+                                         const KldConfig& config, std::uint64_t seed,
+                                         std::uint64_t step, std::size_t grain = kDefaultGrain);
+
+/// KLD-sampling: n = kld_draw_count(...) and then resample_systematic(store, n, seed, step,
+/// grain), whose ancestors are exactly the ones the count saw. Returns n.
 std::size_t resample_kld_systematic(ParticleStore& store, KldBins& bins, const KldConfig& config,
                                     std::uint64_t seed, std::uint64_t step,
                                     std::size_t grain = kDefaultGrain);
