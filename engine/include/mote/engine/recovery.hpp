@@ -19,6 +19,11 @@ namespace mote {
 struct AugmentedMclConfig {
   double alpha_slow = 0.001;  ///< long-term average rate
   double alpha_fast = 0.1;    ///< short-term average rate
+  /// Dead band: injection starts only once w_fast falls below (1 - band) w_slow, and
+  /// p = max(0, 1 - w_fast / ((1 - band) w_slow)). 0 is the book's rule. A tracked scan's
+  /// likelihood or fit swings by a few tens of percent from update to update (people,
+  /// clutter, glass); without a band each dip would inject particles.
+  double band = 0.0;
 };
 
 /// The long- and short-term averages of the measurement likelihood, w_slow and w_fast, kept in
@@ -33,8 +38,9 @@ class AugmentedMcl {
   /// raises the injection probability: that is how recovery takes over.
   void update(double log_mean_likelihood) noexcept;
 
-  /// Table 8.3, line 13: max(0, 1 - w_fast / w_slow), the probability of replacing a particle
-  /// by a random one; 0 before the first update and when recovery is disabled.
+  /// Table 8.3, line 13: max(0, 1 - w_fast / w_slow) (with the config's dead band), the probability
+  /// of replacing a particle by a random one; 0 before the first update and when recovery is
+  /// disabled.
   [[nodiscard]] double injection_probability() const noexcept;
 
   [[nodiscard]] double log_w_slow() const noexcept { return log_slow_; }

@@ -1,0 +1,52 @@
+#include "scan_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace mote {
+
+ScanFit::ScanFit(const OccupancyGrid& grid, double tolerance_m)
+    : grid_(grid),
+      field_(grid, {.unknown_is_obstacle = false,
+                    .max_distance = static_cast<float>(2.0 * tolerance_m + grid.resolution())}),
+      tolerance_(static_cast<float>(tolerance_m)) {}
+
+double ScanFit::operator()(const BeamSet& beams, const ConstParticleView& p) const {
+  const std::size_t n = p.size();
+  if (n == 0) return 0.0;
+  // Endpoints in the robot frame once per scan (no-return beams have none to explain).
+  std::vector<Point2> ends;
+  ends.reserve(beams.size());
+  const Pose2& s = beams.sensor_pose;
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    if (beams.range[b] >= beams.range_max) continue;
+    const double a = s.theta + beams.angle[b];
+    ends.push_back({s.x + beams.range[b] * std::cos(a), s.y + beams.range[b] * std::sin(a)});
+  }
+  if (ends.empty()) return 0.0;
+  const std::size_t stride = std::max<std::size_t>(1, (n + kSample - 1) / kSample);
+  double weighted = 0.0;
+  double total = 0.0;
+  for (std::size_t i = 0; i < n; i += stride) {
+    const double w = std::exp(static_cast<double>(p.logw[i]));
+    if (!(w > 0.0) || !is_finite(p.pose(i))) continue;
+    weighted += w * explained_share(ends, p.pose(i));
+    total += w;
+  }
+  return total > 0.0 ? weighted / total : 0.0;
+}
+
+double ScanFit::explained_share(const std::vector<Point2>& ends, const Pose2& pose) const {
+  const double c = std::cos(pose.theta);
+  const double s = std::sin(pose.theta);
+  std::size_t near = 0;
+  for (const Point2& e : ends) {
+    const CellIndex cell =
+        grid_.world_to_cell({pose.x + c * e.x - s * e.y, pose.y + s * e.x + c * e.y});
+    if (grid_.contains(cell) && field_.at(cell) <= tolerance_) ++near;
+  }
+  return static_cast<double>(near) / static_cast<double>(ends.size());
+}
+
+}  // namespace mote
