@@ -1,0 +1,75 @@
+#pragma once
+/// \file
+/// The odometry model's noise (alpha1..alpha4, Thrun et al. table 5.6 in ROS amcl's convention)
+/// estimated online from the filter's own corrections: the motion between successive estimates
+/// against the odometry increment between the same updates. Odometry differs by orders of
+/// magnitude between robots (a log whose odometry under-reports rotation by a third needs
+/// rotation noise that, on a robot with good odometry, lets the estimate drift along a
+/// corridor), so no constant serves both; the residuals of each log say which it is.
+
+#include <optional>
+
+#include "mote/core/pose.hpp"
+
+namespace mote {
+
+/// alpha1..alpha4 with amcl's meaning (rotation from rotation, rotation from translation,
+/// translation from translation, translation from rotation).
+struct OdometryAlphas {
+  double alpha1 = 0.2;
+  double alpha2 = 0.2;
+  double alpha3 = 0.2;
+  double alpha4 = 0.2;
+};
+
+/// How the residuals become alphas.
+struct OdometryNoiseConfig {
+  double forgetting = 0.99;  ///< per update: the fit remembers about the last 100 updates
+  /// Variance factor on the fitted noise. Spread that merely equals the odometry's error
+  /// would let the particles follow the odometry a little too closely, the residuals would
+  /// shrink with it and the fit would talk itself down; twice the variance keeps every fitted
+  /// error inside the cloud's 1.4 sigma.
+  double safety = 2.0;
+  double alpha_min = 0.002;  ///< bounds of every fitted alpha
+  double alpha_max = 1.0;
+  double min_samples = 20.0;  ///< effective samples (after forgetting) before alphas() answers
+  /// Residuals beyond these are relocalizations (a cluster switch, recovery), not odometry
+  /// noise, and are left out of the fit.
+  double max_rotation_residual = 0.5;      ///< rad
+  double max_translation_residual = 0.75;  ///< m
+};
+
+/// Exponentially weighted least squares of the squared residuals on the model's variance terms
+/// (table 5.6, lines 5-7): e_theta^2 ~ alpha1 (rot1^2 + rot2^2) + alpha2 2 trans^2 and
+/// |e_xy|^2 ~ alpha3 trans^2 + alpha4 (rot1^2 + rot2^2), each pair fitted with alphas >= 0.
+class OdometryNoiseEstimator {
+ public:
+  explicit OdometryNoiseEstimator(OdometryNoiseConfig config = {}) : config_(config) {}
+
+  /// One update's evidence: odometry from odom_before to odom_after while the estimate moved
+  /// from estimate_before to estimate_after. Returns false when the pair was left out.
+  bool add(const Pose2& odom_before, const Pose2& odom_after, const Pose2& estimate_before,
+           const Pose2& estimate_after) noexcept;
+
+  /// safety times the fitted alphas, within [alpha_min, alpha_max]; nullopt until
+  /// min_samples residuals have been added.
+  [[nodiscard]] std::optional<OdometryAlphas> alphas() const noexcept;
+
+  /// Forgets every residual.
+  void reset() noexcept { *this = OdometryNoiseEstimator(config_); }
+
+ private:
+  // Normal equations of y ~ p u + q v, accumulated with forgetting.
+  struct Fit {
+    double uu = 0, uv = 0, vv = 0, uy = 0, vy = 0;
+    void add(double u, double v, double y, double keep) noexcept;
+    void solve(double& p, double& q) const noexcept;
+  };
+
+  OdometryNoiseConfig config_;
+  Fit rotation_;
+  Fit translation_;
+  double samples_ = 0.0;
+};
+
+}  // namespace mote

@@ -1,0 +1,91 @@
+#include "mote/engine/odometry_noise.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace mote {
+namespace {
+
+// Table 5.6, lines 2-4, with amcl's reading of a backward step as a small rotation.
+struct Increments {
+  double rot1_sq;
+  double trans_sq;
+  double rot2_sq;
+};
+
+double small_rotation(double rot) {
+  return std::min(std::abs(rot), std::abs(wrap_angle(rot - std::numbers::pi)));
+}
+
+Increments increments_of(const Pose2& step) {
+  const double trans = std::hypot(step.x, step.y);
+  const double rot1 = trans < 0.01 ? 0.0 : small_rotation(std::atan2(step.y, step.x));
+  const double rot2 = small_rotation(wrap_angle(step.theta - rot1));
+  return {rot1 * rot1, trans * trans, rot2 * rot2};
+}
+
+}  // namespace
+
+void OdometryNoiseEstimator::Fit::add(double u, double v, double y, double keep) noexcept {
+  uu = keep * uu + u * u;
+  uv = keep * uv + u * v;
+  vv = keep * vv + v * v;
+  uy = keep * uy + u * y;
+  vy = keep * vy + v * y;
+}
+
+void OdometryNoiseEstimator::Fit::solve(double& p, double& q) const noexcept {
+  // Least squares with p, q >= 0: the unconstrained solution when it is feasible, else the
+  // better of the two one-term fits (the constrained optimum lies on a boundary).
+  const double det = uu * vv - uv * uv;
+  if (det > 1e-12 * (uu * vv) && det > 0.0) {
+    p = (vv * uy - uv * vy) / det;
+    q = (uu * vy - uv * uy) / det;
+    if (p >= 0.0 && q >= 0.0) return;
+  }
+  const double p_only = uu > 0.0 ? std::max(0.0, uy / uu) : 0.0;
+  const double q_only = vv > 0.0 ? std::max(0.0, vy / vv) : 0.0;
+  // Residual sums of squares up to the common y^2 term: -p uy for p alone, -q vy for q alone.
+  if (p_only * uy >= q_only * vy) {
+    p = p_only;
+    q = 0.0;
+  } else {
+    p = 0.0;
+    q = q_only;
+  }
+}
+
+bool OdometryNoiseEstimator::add(const Pose2& odom_before, const Pose2& odom_after,
+                                 const Pose2& estimate_before,
+                                 const Pose2& estimate_after) noexcept {
+  const Pose2 odom = between(odom_before, odom_after);
+  const Pose2 moved = between(estimate_before, estimate_after);
+  const double e_theta = wrap_angle(moved.theta - odom.theta);
+  const double e_xy = std::hypot(moved.x - odom.x, moved.y - odom.y);
+  if (!std::isfinite(e_theta) || !std::isfinite(e_xy) ||
+      std::abs(e_theta) > config_.max_rotation_residual ||
+      e_xy > config_.max_translation_residual) {
+    return false;
+  }
+  const Increments inc = increments_of(odom);
+  const double rot_sq = inc.rot1_sq + inc.rot2_sq;
+  const double keep = config_.forgetting;
+  rotation_.add(rot_sq, 2.0 * inc.trans_sq, e_theta * e_theta, keep);
+  translation_.add(inc.trans_sq, rot_sq, e_xy * e_xy, keep);
+  samples_ = keep * samples_ + 1.0;
+  return true;
+}
+
+std::optional<OdometryAlphas> OdometryNoiseEstimator::alphas() const noexcept {
+  if (samples_ < config_.min_samples) return std::nullopt;
+  OdometryAlphas a;
+  rotation_.solve(a.alpha1, a.alpha2);
+  translation_.solve(a.alpha3, a.alpha4);
+  const auto bounded = [&](double alpha) {
+    return std::clamp(config_.safety * alpha, config_.alpha_min, config_.alpha_max);
+  };
+  return OdometryAlphas{bounded(a.alpha1), bounded(a.alpha2), bounded(a.alpha3), bounded(a.alpha4)};
+}
+
+}  // namespace mote
