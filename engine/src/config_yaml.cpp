@@ -90,6 +90,7 @@ const std::vector<Key>& keys() {
         field<double>("alpha4", kNum, &LocalizerConfig::alpha4),
         field<double>("alpha5", kNum, &LocalizerConfig::alpha5),
         field<double>("wheelbase", kNum, &LocalizerConfig::wheelbase),
+        field<bool>("adaptive_motion_noise", kBool, &LocalizerConfig::adaptive_motion_noise),
         field<int>("max_beams", kInt, &LocalizerConfig::max_beams),
         field<double>("laser_min_range", kNum, &LocalizerConfig::laser_min_range),
         field<double>("laser_max_range", kNum, &LocalizerConfig::laser_max_range),
@@ -101,7 +102,14 @@ const std::vector<Key>& keys() {
         field<double>("lambda_short", kNum, &LocalizerConfig::lambda_short),
         field<double>("laser_likelihood_max_dist", kNum,
                       &LocalizerConfig::laser_likelihood_max_dist),
-        field<double>("likelihood_tempering", kNum, &LocalizerConfig::likelihood_tempering),
+        {"likelihood_tempering", "a number or auto",
+         [](LocalizerConfig& c, const YAML::Node& n) {
+           c.likelihood_tempering = n.as<std::string>() == "auto" ? 0.0 : n.as<double>();
+         }},
+        field<double>("tempering_ess_fraction", kNum, &LocalizerConfig::tempering_ess_fraction),
+        field<double>("global_particles_per_bin", kNum, &LocalizerConfig::global_particles_per_bin),
+        field<double>("recovery_fit_distance", kNum, &LocalizerConfig::recovery_fit_distance),
+        field<double>("recovery_fit_band", kNum, &LocalizerConfig::recovery_fit_band),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
         field<int>("threads", kInt, &LocalizerConfig::threads),
         field<std::uint64_t>("seed", kInt, &LocalizerConfig::seed),
@@ -181,9 +189,11 @@ void apply_key(LocalizerConfig& config, const std::string& key, const YAML::Node
   }
 }
 
+bool is_ros_params(const YAML::Node& root) { return root["amcl"] && root["amcl"].IsMap(); }
+
 // The map that holds the parameters: nav2's amcl/ros__parameters, ROS 1's amcl, or the root.
 YAML::Node parameter_map(const YAML::Node& root) {
-  if (root["amcl"] && root["amcl"].IsMap()) {
+  if (is_ros_params(root)) {
     const YAML::Node amcl = root["amcl"];
     return amcl["ros__parameters"] ? amcl["ros__parameters"] : amcl;
   }
@@ -254,16 +264,30 @@ void validate(const LocalizerConfig& c, const YAML::Node& params, const std::str
   check_sizes(c, params, name);
 }
 
+// What keys absent from the file default to: a nav2 or ROS amcl params file means amcl's
+// behaviour, so nav2's values; a flat file mote's, unless it says `defaults: nav2`.
+LocalizerConfig base_config(const YAML::Node& root, const YAML::Node& params,
+                            const std::string& name) {
+  const YAML::Node choice = params.IsMap() ? params["defaults"] : YAML::Node();
+  if (!choice) return is_ros_params(root) ? nav2_defaults() : LocalizerConfig{};
+  const std::string value = choice.IsScalar() ? choice.Scalar() : std::string();
+  if (value == "nav2") return nav2_defaults();
+  if (value == "mote") return LocalizerConfig{};
+  throw InputError(name, place_of(choice, "defaults"), "expected mote or nav2");
+}
+
 }  // namespace
 
 LoadedConfig parse_config(const std::string& yaml_text, const std::string& name) {
-  const YAML::Node params = parameter_map(parse_yaml(yaml_text, name));
+  const YAML::Node root = parse_yaml(yaml_text, name);
+  const YAML::Node params = parameter_map(root);
   if (!params.IsMap()) {
     throw InputError(name, "line " + std::to_string(params.Mark().line + 1),
                      "expected a map of parameters");
   }
-  LoadedConfig loaded;
+  LoadedConfig loaded{.config = base_config(root, params, name), .warnings = {}};
   for (const auto& entry : params) {
+    if (entry.first.IsScalar() && entry.first.Scalar() == "defaults") continue;
     apply_key(loaded.config, key_name(entry.first, name), entry.second, name, loaded.warnings);
   }
   validate(loaded.config, params, name);

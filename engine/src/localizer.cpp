@@ -1,8 +1,10 @@
 // The MCL update of design.md section 2 as a straight list of calls.
 #include "mote/engine/localizer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 
 #include "localizer_impl.hpp"
 #include "mote/core/error.hpp"
@@ -36,12 +38,43 @@ Localizer::~Localizer() = default;
 Localizer::Localizer(Localizer&&) noexcept = default;
 Localizer& Localizer::operator=(Localizer&&) noexcept = default;
 
+std::size_t Localizer::Impl::global_count() const {
+  const auto max_n = static_cast<std::size_t>(config.max_particles);
+  if (config.global_particles_per_bin <= 0.0) return max_n;
+  // KLD bins of free space: free area over the bin area, times the heading bins.
+  const double cell_area = map.resolution() * map.resolution();
+  const double xy_bins = static_cast<double>(map.free_cell_count()) * cell_area /
+                         (config.kld_bin_xy * config.kld_bin_xy);
+  const double theta_bins = std::ceil(2.0 * std::numbers::pi / config.kld_bin_theta);
+  const double wanted = std::ceil(config.global_particles_per_bin * xy_bins * theta_bins);
+  return static_cast<std::size_t>(
+      std::clamp(wanted, static_cast<double>(config.min_particles), static_cast<double>(max_n)));
+}
+
+void Localizer::Impl::keep_kld_prefix() {
+  // The Gaussian draws are independent, so any prefix of them is a sample of its own: keep the
+  // shortest prefix that Fox's rule finds large enough for the bins it occupies.
+  if (kld.min_particles == kld.max_particles) return;
+  std::size_t n = kld.min_particles;
+  while (n < store.size()) {
+    ConstParticleView prefix = std::as_const(store).view();
+    prefix.count = n;
+    const std::size_t wanted = kld_sample_count(bins.count(prefix, config.grain), kld);
+    if (wanted <= n) break;
+    n = std::min(wanted, store.size());
+  }
+  store.resize(n);
+  store.set_uniform_weights();
+}
+
 void Localizer::Impl::start_fresh() {
   step = 0;
   has_odometry = false;
   degenerate = false;
   updates_since_resample = 0;
   recovery.reset();
+  odometry_noise.reset();
+  motion = make_motion(config);
   stats = UpdateStats{};
   stats.particles = store.size();
   initialized = true;
@@ -54,16 +87,15 @@ void Localizer::initialize(const Pose2& mean, const Eigen::Matrix3d& covariance)
   s.executor.run([&] {
     initialize_gaussian(s.store, static_cast<std::size_t>(s.config.max_particles), mean, covariance,
                         s.config.seed, s.config.grain);
+    if (s.config.global_particles_per_bin > 0.0) s.keep_kld_prefix();
   });
   s.start_fresh();
 }
 
 void Localizer::initialize_global() {
   Impl& s = *impl_;
-  s.executor.run([&] {
-    initialize_uniform(s.store, static_cast<std::size_t>(s.config.max_particles), s.map,
-                       s.config.seed, s.config.grain);
-  });
+  s.executor.run(
+      [&] { initialize_uniform(s.store, s.global_count(), s.map, s.config.seed, s.config.grain); });
   s.start_fresh();
 }
 
@@ -85,13 +117,18 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   s.executor.run([&] {
     if (s.has_odometry) timed(s.stats.ms.motion, [&] { s.predict(odometry); });
     timed(s.stats.ms.sensor, [&] { s.weigh(); });
+    timed(s.stats.ms.tempering, [&] { s.temper(); });
     timed(s.stats.ms.normalize, [&] { s.normalize(); });
-    timed(s.stats.ms.resample, [&] { s.maybe_resample(); });
+    timed(s.stats.ms.resample, [&] {
+      s.maybe_resample();
+      s.maybe_inject();
+    });
     timed(s.stats.ms.estimate, [&] { s.update_estimate(); });
   });
   s.stats.outcome = s.degenerate     ? UpdateOutcome::kUnexplainedScan
                     : s.has_odometry ? UpdateOutcome::kUpdated
                                      : UpdateOutcome::kInitialized;
+  s.adapt_motion_noise(odometry);
   s.last_odometry = odometry;
   s.has_odometry = true;
   ++s.step;

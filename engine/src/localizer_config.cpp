@@ -27,6 +27,8 @@ void validate_particles(const LocalizerConfig& c) {
   }
   require(finite_positive(c.kld_bin_xy), "kld_bin_xy", "a positive bin size in metres");
   require(finite_positive(c.kld_bin_theta), "kld_bin_theta", "a positive bin size in radians");
+  require(finite_at_least(c.global_particles_per_bin, 0.0), "global_particles_per_bin",
+          "a count >= 0 (0 draws max_particles)");
 }
 
 void validate_resampling(const LocalizerConfig& c) {
@@ -35,6 +37,11 @@ void validate_resampling(const LocalizerConfig& c) {
           "resample_ess_fraction", "a fraction in (0, 1]");
   require(probability(c.recovery_alpha_slow), "recovery_alpha_slow", "a rate in [0, 1]");
   require(probability(c.recovery_alpha_fast), "recovery_alpha_fast", "a rate in [0, 1]");
+  require(finite_positive(c.recovery_fit_distance), "recovery_fit_distance",
+          "a positive distance in metres");
+  require(
+      std::isfinite(c.recovery_fit_band) && c.recovery_fit_band >= 0.0 && c.recovery_fit_band < 1.0,
+      "recovery_fit_band", "a fraction in [0, 1)");
   require(finite_at_least(c.update_min_d, 0.0), "update_min_d", "a distance >= 0");
   require(finite_at_least(c.update_min_a, 0.0), "update_min_a", "an angle >= 0");
   require(finite_positive(c.odom_jump_max_d), "odom_jump_max_d", "a positive distance in metres");
@@ -60,12 +67,28 @@ void validate_sensor(const LocalizerConfig& c) {
   require(finite_positive(c.lambda_short), "lambda_short", "a positive rate in 1/m");
   require(finite_positive(c.laser_likelihood_max_dist), "laser_likelihood_max_dist",
           "a positive distance in metres");
-  require(finite_positive(c.likelihood_tempering), "likelihood_tempering", "an exponent > 0");
+  require(std::isfinite(c.likelihood_tempering) && c.likelihood_tempering >= 0.0 &&
+              c.likelihood_tempering <= 1.0,
+          "likelihood_tempering", "an exponent in (0, 1], or 0 to choose it per update");
+  require(finite_positive(c.tempering_ess_fraction) && c.tempering_ess_fraction < 1.0,
+          "tempering_ess_fraction", "a fraction in (0, 1)");
   require(std::isfinite(c.laser_min_range), "laser_min_range", "a finite number");
   require(std::isfinite(c.laser_max_range), "laser_max_range", "a finite number");
 }
 
 }  // namespace
+
+LocalizerConfig nav2_defaults() {
+  LocalizerConfig c;
+  c.max_particles = 2000;
+  c.global_particles_per_bin = 0.0;
+  c.recovery_alpha_slow = 0.0;
+  c.recovery_alpha_fast = 0.0;
+  c.likelihood_tempering = 1.0;
+  c.adaptive_motion_noise = false;
+  c.recovery_fit_band = 0.0;
+  return c;
+}
 
 void LocalizerConfig::validate() const {
   validate_particles(*this);

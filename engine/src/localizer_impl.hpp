@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "mote/engine/beam_model.hpp"
 #include "mote/engine/beams.hpp"
@@ -13,8 +14,10 @@
 #include "mote/engine/likelihood_field_model.hpp"
 #include "mote/engine/localizer.hpp"
 #include "mote/engine/motion.hpp"
+#include "mote/engine/odometry_noise.hpp"
 #include "mote/engine/particles.hpp"
 #include "mote/engine/recovery.hpp"
+#include "scan_fit.hpp"
 
 namespace mote {
 
@@ -24,6 +27,9 @@ namespace mote {
 
 using SensorVariant = std::variant<LikelihoodFieldModel, BeamModel>;
 using MotionVariant = std::variant<OdometryModel, OmniModel, AckermannModel>;
+
+// The motion model a config asks for (localizer_steps.cpp).
+[[nodiscard]] MotionVariant make_motion(const LocalizerConfig& c);
 
 struct Localizer::Impl {
   Impl(const OccupancyGrid& grid, LocalizerConfig cfg);
@@ -36,12 +42,19 @@ struct Localizer::Impl {
   bool reset_odometry(const Pose2& odometry);
   void predict(const Pose2& odometry);
   void weigh();
+  void temper();
   void normalize();
   void maybe_resample();
+  void maybe_inject();
   void update_estimate();
+  // After an update: the residual of the estimate's motion against the odometry's, and the
+  // motion model refitted from the residuals so far.
+  void adapt_motion_noise(const Pose2& odometry);
 
   // Initialization (localizer.cpp): forget everything but the map and the config.
   void start_fresh();
+  [[nodiscard]] std::size_t global_count() const;  // global_particles_per_bin's count
+  void keep_kld_prefix();  // cut a fresh i.i.d. set to the KLD count of its prefix
 
   LocalizerConfig config;
   OccupancyGrid map;
@@ -52,9 +65,13 @@ struct Localizer::Impl {
   KldConfig kld;
   KldBins bins;
   AugmentedMcl recovery;
+  ScanFit fit;
+  OdometryNoiseEstimator odometry_noise;
+  Pose2 last_estimate;       // best estimate after the previous update
   PoseSummarizer summarize;  // keeps its scratch memory between updates
   ParticleStore store;
   BeamSet beams;
+  std::vector<float> loglik;  // untempered scan log-likelihood per particle (padded)
   LocalizationEstimate estimate;
   UpdateStats stats;
 

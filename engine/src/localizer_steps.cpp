@@ -6,11 +6,12 @@
 #include "localizer_impl.hpp"
 #include "mote/engine/estimate.hpp"
 #include "mote/engine/resample.hpp"
+#include "mote/engine/tempering.hpp"
 #include "mote/engine/weights.hpp"
 
 namespace mote {
 
-namespace {
+namespace {}  // namespace
 
 MotionVariant make_motion(const LocalizerConfig& c) {
   switch (c.odom_model_type) {
@@ -25,21 +26,22 @@ MotionVariant make_motion(const LocalizerConfig& c) {
   return OdometryModel{c.alpha1, c.alpha2, c.alpha3, c.alpha4, c.amcl_motion_conventions};
 }
 
+namespace {
+
 MixtureParams mixture_of(const LocalizerConfig& c) {
   return {c.z_hit, c.z_short, c.z_max, c.z_rand, c.sigma_hit, c.lambda_short};
 }
 
 SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
   if (c.laser_model_type == LaserModel::kBeam) {
-    return SensorVariant(
-        std::in_place_type<BeamModel>, grid,
-        BeamModelParams{mixture_of(c), c.likelihood_tempering, c.unknown_cells_block_rays});
+    return SensorVariant(std::in_place_type<BeamModel>, grid,
+                         BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays});
   }
   return SensorVariant(std::in_place_type<LikelihoodFieldModel>, grid,
                        LikelihoodFieldParams{.mixture = mixture_of(c),
                                              .max_distance = c.laser_likelihood_max_dist,
                                              .combination = c.likelihood_combination,
-                                             .tempering = c.likelihood_tempering});
+                                             .tempering = 1.0});
 }
 
 KldConfig kld_of(const LocalizerConfig& c) {
@@ -73,7 +75,10 @@ Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
                 .keep_max_range = config.laser_model_type == LaserModel::kBeam},
       kld(kld_of(config)),
       bins(map.bounds(), config.kld_bin_xy, config.kld_bin_xy, config.kld_bin_theta),
-      recovery({config.recovery_alpha_slow, config.recovery_alpha_fast}),
+      recovery({.alpha_slow = config.recovery_alpha_slow,
+                .alpha_fast = config.recovery_alpha_fast,
+                .band = config.recovery_fit_band}),
+      fit(map, config.recovery_fit_distance),
       summarize(ClusterConfig{.bin_x = config.kld_bin_xy,
                               .bin_y = config.kld_bin_xy,
                               .bin_theta = config.kld_bin_theta}) {
@@ -136,25 +141,43 @@ void Localizer::Impl::predict(const Pose2& odometry) {
 
 void Localizer::Impl::weigh() {
   stats.weighed = store.size();
+  // The untempered scan log-likelihood of every particle goes to its own column: tempering
+  // chooses its exponent from it, and the prior weights stay untouched until then.
+  const ParticleView p = store.view();
+  loglik.assign(p.padded_size(), 0.0F);
+  const ParticleView into{p.x, p.y, p.theta, loglik.data(), p.count};
   std::visit(
       [&](auto& model) {
         if constexpr (requires { model.prepare(beams); }) model.prepare(beams);
-        weigh_scan(model, beams, store.view(), config.grain);
+        weigh_scan(model, beams, into, config.grain);
       },
       *sensor);
 }
 
+void Localizer::Impl::temper() {
+  const ParticleView p = store.view();
+  double tau = config.likelihood_tempering;
+  if (tau == 0.0) {
+    const TemperingConfig search{.target_ess_fraction = config.tempering_ess_fraction};
+    const TemperingChoice choice =
+        choose_tempering(p.logw, loglik.data(), p.size(), search, config.grain);
+    tau = choice.tau;
+    stats.tempering_trials = choice.trials;
+  }
+  stats.tempering = tau;
+  apply_tempering(p, loglik.data(), static_cast<float>(tau), config.grain);
+}
+
 void Localizer::Impl::normalize() {
-  // logw held log(w_prev) + log p(z | x) with sum(w_prev) = 1, so log_total is log of the
-  // weighted mean likelihood: w_avg of Thrun table 8.3, line 8.
   const NormalizeResult result = mote::normalize(store.view(), config.grain);
   degenerate = !result.ok();
   stats.effective_sample_size = result.effective_sample_size;
-  // Augmented MCL averages the likelihood per beam (the geometric mean over the scan's beams):
-  // a 60-beam likelihood swings by e^5 between ordinary scans, which would make
-  // 1 - w_fast / w_slow inject particles on every update. Per beam, only a real drop in how
-  // well the map explains the scan moves the ratio.
-  recovery.update(result.log_total / static_cast<double>(std::max<std::size_t>(beams.size(), 1)));
+  // Thrun table 8.3, lines 10-11, on the scan fit instead of w_avg (scan_fit.hpp says why),
+  // at the posterior weights: injected particles that explain nothing weigh nothing there,
+  // so only a set whose best hypotheses fit badly lowers it (at the prior weights, each
+  // injection lowered the fit and called for more injection).
+  stats.scan_fit = fit(beams, std::as_const(store).view());
+  recovery.update(std::log(stats.scan_fit));
   stats.log_w_slow = recovery.log_w_slow();
   stats.log_w_fast = recovery.log_w_fast();
   if (degenerate) {
@@ -169,20 +192,44 @@ void Localizer::Impl::maybe_resample() {
   // diversity (Thrun section 4.3.4).
   if (!has_odometry) return;
   if (++updates_since_resample < config.resample_interval) return;
-  const double p_inject = recovery.injection_probability();
-  const std::size_t n = store.size();
-  if (!should_resample(stats.effective_sample_size, n, config.resample_ess_fraction) &&
-      p_inject <= 0.0) {
+  if (!should_resample(stats.effective_sample_size, store.size(), config.resample_ess_fraction)) {
     return;
   }
   updates_since_resample = 0;
-  const std::size_t n_out = kld_sample_count(std::as_const(store).view(), bins, kld, config.grain);
-  resample_systematic(store, n_out, config.seed, step, config.grain);
+  resample_kld_systematic(store, bins, kld, config.seed, step, config.grain);
   stats.resampled = true;
-  if (p_inject > 0.0) {
-    stats.injected =
-        inject_random_particles(store.view(), p_inject, map, config.seed, step, config.grain);
-  }
+}
+
+void Localizer::Impl::maybe_inject() {
+  // Table 8.3, line 13, without forcing a resample: each particle is replaced with
+  // probability p_inject by a free-space pose and keeps its weight. The decision does not
+  // depend on the pose, so the set becomes (1 - p) posterior + p uniform over free space, as
+  // the book's injection during resampling gives, while the ESS gate alone decides when to
+  // resample.
+  if (!has_odometry) return;
+  const double p_inject = recovery.injection_probability();
+  if (p_inject <= 0.0) return;
+  stats.injected =
+      inject_random_particles(store.view(), p_inject, map, config.seed, step, config.grain);
+}
+
+void Localizer::Impl::adapt_motion_noise(const Pose2& odometry) {
+  const Pose2 estimate_now = estimate.best().mean;
+  const bool usable =
+      has_odometry && stats.outcome == UpdateOutcome::kUpdated && stats.injected == 0;
+  if (usable) odometry_noise.add(last_odometry, odometry, last_estimate, estimate_now);
+  last_estimate = estimate_now;
+  stats.alphas = {config.alpha1, config.alpha2, config.alpha3, config.alpha4};
+  if (!config.adaptive_motion_noise || config.odom_model_type == OdomModel::kAckermann) return;
+  const std::optional<OdometryAlphas> fitted = odometry_noise.alphas();
+  if (!fitted) return;
+  LocalizerConfig adapted = config;
+  adapted.alpha1 = fitted->alpha1;
+  adapted.alpha2 = fitted->alpha2;
+  adapted.alpha3 = fitted->alpha3;
+  adapted.alpha4 = fitted->alpha4;
+  motion = make_motion(adapted);
+  stats.alphas = *fitted;
 }
 
 void Localizer::Impl::update_estimate() {

@@ -40,7 +40,17 @@ void initialize(Localizer& filter, const ReplayOptions& options,
 void record_update(ReplayResult& result, const Localizer& filter, double stamp) {
   const UpdateStats& stats = filter.last_update();
   result.trajectory.push_back({stamp, filter.estimate().best().mean});
-  result.updates.push_back({stamp, stats.ms, stats.particles, stats.weighed, stats.beams});
+  result.updates.push_back({.stamp = stamp,
+                            .ms = stats.ms,
+                            .particles = stats.particles,
+                            .weighed = stats.weighed,
+                            .beams = stats.beams,
+                            .effective_sample_size = stats.effective_sample_size,
+                            .tempering = stats.tempering,
+                            .scan_fit = stats.scan_fit,
+                            .injected = stats.injected,
+                            .resampled = stats.resampled,
+                            .alphas = stats.alphas});
 }
 
 void count_outcome(ReplayResult& result, const UpdateStats& stats) {

@@ -29,6 +29,7 @@
 #include "mote/core/scan.hpp"
 #include "mote/engine/estimate.hpp"
 #include "mote/engine/localizer_config.hpp"
+#include "mote/engine/odometry_noise.hpp"
 #include "mote/engine/particles.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 
@@ -58,6 +59,7 @@ enum class UpdateOutcome : std::uint8_t {
 struct PhaseTimes {
   double motion = 0.0;
   double sensor = 0.0;
+  double tempering = 0.0;  ///< the scan fit and the exponent search (tempering.hpp)
   double normalize = 0.0;
   double resample = 0.0;
   double estimate = 0.0;
@@ -75,7 +77,14 @@ struct UpdateStats {
   double effective_sample_size = 0.0;  ///< of the weighed set
   bool resampled = false;
   std::size_t injected = 0;  ///< recovery particles drawn from free space
-  double log_w_slow = 0.0;   ///< augmented MCL averages (Thrun table 8.3), log domain
+  double tempering = 1.0;    ///< likelihood exponent tau applied to this scan
+  int tempering_trials = 0;  ///< ESS evaluations of the adaptive search (0 when fixed)
+  /// Weighted share of beam endpoints within recovery_fit_distance of an obstacle at the
+  /// predicted particles: what augmented MCL's w_slow / w_fast average.
+  double scan_fit = 0.0;
+  /// The odometry noise the next motion step samples with (config's until adapted).
+  OdometryAlphas alphas;
+  double log_w_slow = 0.0;  ///< augmented MCL averages of scan_fit (table 8.3), log domain
   double log_w_fast = 0.0;
   PhaseTimes ms;
   [[nodiscard]] bool ran() const noexcept {

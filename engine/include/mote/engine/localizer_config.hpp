@@ -1,9 +1,10 @@
 #pragma once
 /// \file
 /// Every parameter of mote::Localizer, with units and defaults. Names follow ROS amcl (and
-/// nav2_amcl) where they overlap, with the same defaults as nav2_amcl; the differences are listed
-/// in README.md
-/// ("Differences from amcl").
+/// nav2_amcl) where they overlap. The defaults are mote's own: mechanisms that adapt to the
+/// sensor and map (adaptive tempering, recovery, a global set sized to the map) instead of
+/// nav2's constants; nav2_defaults() gives nav2_amcl's values. The differences are listed in
+/// README.md ("Differences from amcl").
 
 #include <cstddef>
 #include <cstdint>
@@ -36,9 +37,16 @@ enum class OdomModel : std::uint8_t {
 /// Parameters of the Localizer. Units: metres, radians, seconds.
 struct LocalizerConfig {
   // --- particles and KLD adaptation (Fox 2003) -------------------------------------------
-  int min_particles = 500;   ///< lower bound of the KLD-adaptive count
-  int max_particles = 2000;  ///< upper bound (and the count after initialization)
-  double pf_err = 0.05;      ///< KLD epsilon: max K-L divergence between sample and true posterior
+  int min_particles = 500;  ///< lower bound of the KLD-adaptive count
+  /// Upper bound of the KLD-adaptive count and of the initial sets. nav2: 2000, which leaves
+  /// global localization of a whole building with a particle every few metres.
+  int max_particles = 100000;
+  /// Global initialization draws this many particles per KLD bin of free space (free area /
+  /// kld_bin_xy^2 times the heading bins), within [min_particles, max_particles]: one per bin
+  /// puts a particle within half a bin (25 cm, 5 degrees) of any pose, the basin from which the
+  /// likelihood field pulls it in. 0 draws max_particles (nav2).
+  double global_particles_per_bin = 1.0;
+  double pf_err = 0.05;  ///< KLD epsilon: max K-L divergence between sample and true posterior
   /// KLD confidence. With kld_z_is_quantile false (mote's default) it is the probability 1 - delta
   /// whose standard-normal quantile enters Fox's formula; true reads it as that quantile itself,
   /// as ROS amcl's code does (pf_z 0.99 then means z = 0.99, a far looser bound).
@@ -50,8 +58,16 @@ struct LocalizerConfig {
   // --- resampling and recovery (Thrun table 8.3) -------------------------------------------
   int resample_interval = 1;           ///< filter updates between resampling opportunities
   double resample_ess_fraction = 0.5;  ///< resample only when ESS < fraction * N (1 = always)
-  double recovery_alpha_slow = 0.0;    ///< w_slow smoothing rate; 0 disables injection (amcl)
-  double recovery_alpha_fast = 0.0;    ///< w_fast smoothing rate (Thrun suggests 0.1 with 0.001)
+  /// w_slow smoothing rate (Thrun table 8.3); 0 disables injection (nav2's default).
+  double recovery_alpha_slow = 0.001;
+  double recovery_alpha_fast = 0.1;  ///< w_fast smoothing rate; must exceed alpha_slow
+  /// m: a beam endpoint this close to a mapped obstacle counts as explained. Augmented MCL
+  /// tracks the weighted share of explained endpoints (scan fit), not the scan likelihood, so
+  /// its injection rate means the same for any beam count, model and tempering.
+  double recovery_fit_distance = 0.2;
+  /// Injection starts once the short-term fit falls below (1 - band) of the long-term one: a
+  /// quarter of the endpoints the map used to explain no longer are (recovery.hpp). nav2: 0.
+  double recovery_fit_band = 0.25;
 
   // --- update gate ---------------------------------------------------------------------------
   double update_min_d = 0.25;  ///< m of translation before the filter updates
@@ -70,6 +86,9 @@ struct LocalizerConfig {
   double alpha4 = 0.2;                  ///< translation noise from rotation
   double alpha5 = 0.2;                  ///< strafe noise from translation (omni only)
   double wheelbase = 0.5;               ///< m, Ackermann only
+  /// Fit alpha1..alpha4 online from the filter's corrections (odometry_noise.hpp) once 20
+  /// updates have been seen, starting from the values above (diff and omni models; nav2: off).
+  bool adaptive_motion_noise = true;
 
   // --- sensor model (Thrun tables 6.1, 6.3) -----------------------------------------------
   LaserModel laser_model_type = LaserModel::kLikelihoodField;
@@ -85,8 +104,11 @@ struct LocalizerConfig {
   double lambda_short = 0.1;               ///< 1/m, rate of the short-reading exponential (beam)
   double laser_likelihood_max_dist = 2.0;  ///< m, distance field clamp (likelihood field)
   /// Likelihood exponent tau applied to each scan's log-likelihood (tempering for correlated
-  /// beams; MRPT's powFactor). 1 is the plain product of beam likelihoods.
-  double likelihood_tempering = 1.0;
+  /// beams; MRPT's powFactor). 0 (mote's default) chooses tau per update (adaptive tempering,
+  /// tempering.hpp); a value in (0, 1] fixes it; 1 is the plain product (nav2).
+  double likelihood_tempering = 0.0;
+  /// Adaptive tempering: the scan may lower the ESS to this share of its value before the scan.
+  double tempering_ess_fraction = 0.1;
   bool unknown_cells_block_rays = true;  ///< beam model: unknown cells stop rays (amcl)
 
   // --- execution -----------------------------------------------------------------------------
@@ -98,6 +120,11 @@ struct LocalizerConfig {
   void validate() const;
 };
 
+/// nav2_amcl's defaults (the values amcl users compare against): 500-2000 particles, the
+/// plain product of beams (tempering 1), no recovery, every particle drawn at global
+/// initialization. `defaults: nav2` in a config file and `--nav2-defaults` select it.
+[[nodiscard]] LocalizerConfig nav2_defaults();
+
 /// A configuration read from a file, with the warnings it produced (unknown keys).
 struct LoadedConfig {
   LocalizerConfig config;
@@ -106,8 +133,9 @@ struct LoadedConfig {
 
 /// Reads a LocalizerConfig from YAML: either a flat map of the fields above (amcl names), or a
 /// nav2 params file as it is (the `amcl: ros__parameters:` section is used). Keys absent from the
-/// file keep their defaults; unknown keys give a warning naming them; a wrong type or an
-/// out-of-range value throws InputError naming the file and key.
+/// file keep their defaults: mote's for a flat file, nav2_defaults() for a nav2 or ROS amcl
+/// params file and for a flat file with `defaults: nav2`; unknown keys give a warning naming them;
+/// a wrong type or an out-of-range value throws InputError naming the file and key.
 [[nodiscard]] LoadedConfig load_config(const std::filesystem::path& yaml);
 
 /// As load_config, from YAML text; `name` stands for the file in messages.

@@ -52,6 +52,12 @@ struct UpdateRecord {
   std::size_t particles = 0;
   std::size_t weighed = 0;
   std::size_t beams = 0;
+  double effective_sample_size = 0.0;  ///< of the weighed set
+  double tempering = 1.0;              ///< likelihood exponent applied
+  double scan_fit = 0.0;               ///< share of endpoints the map explains (recovery)
+  std::size_t injected = 0;            ///< recovery particles
+  bool resampled = false;
+  OdometryAlphas alphas;  ///< odometry noise in use after the update
 };
 
 /// Number of UpdateOutcome values (they are counted by their integer value).

@@ -41,8 +41,13 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
 void print_summary(std::ostream& out, const ReplayResult& result,
                    const ReportOptions& options = {});
 
-/// Creates `dir` if needed and writes report.json, trajectory.tum and map.png into it (and
-/// profile.folded with options.profile). Throws mote::Error when a file cannot be written.
+/// Writes one CSV line per update that ran: stamp, particles, weighed, beams, ess, tempering,
+/// scan_fit, injected, resampled, alpha1..alpha4, total_ms. Throws mote::Error when it cannot be
+/// written.
+void write_updates_csv(const std::filesystem::path& file, const ReplayResult& result);
+
+/// Creates `dir` if needed and writes report.json, trajectory.tum, updates.csv and map.png into it
+/// (and profile.folded with options.profile). Throws mote::Error when a file cannot be written.
 void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,
                           const ReportOptions& options = {});
 
