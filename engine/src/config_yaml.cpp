@@ -108,7 +108,6 @@ const std::vector<Key>& keys() {
          }},
         field<double>("tempering_ess_fraction", kNum, &LocalizerConfig::tempering_ess_fraction),
         field<double>("global_particles_per_bin", kNum, &LocalizerConfig::global_particles_per_bin),
-        field<double>("recovery_fit_distance", kNum, &LocalizerConfig::recovery_fit_distance),
         field<double>("recovery_fit_band", kNum, &LocalizerConfig::recovery_fit_band),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
         field<int>("threads", kInt, &LocalizerConfig::threads),

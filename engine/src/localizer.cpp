@@ -117,8 +117,10 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   s.executor.run([&] {
     if (s.has_odometry) timed(s.stats.ms.motion, [&] { s.predict(odometry); });
     timed(s.stats.ms.sensor, [&] { s.weigh(); });
-    timed(s.stats.ms.tempering, [&] { s.temper(); });
-    timed(s.stats.ms.normalize, [&] { s.normalize(); });
+    timed(s.stats.ms.normalize, [&] {
+      s.temper();
+      s.normalize();
+    });
     timed(s.stats.ms.resample, [&] {
       s.maybe_resample();
       s.maybe_inject();

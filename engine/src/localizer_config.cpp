@@ -37,8 +37,6 @@ void validate_resampling(const LocalizerConfig& c) {
           "resample_ess_fraction", "a fraction in (0, 1]");
   require(probability(c.recovery_alpha_slow), "recovery_alpha_slow", "a rate in [0, 1]");
   require(probability(c.recovery_alpha_fast), "recovery_alpha_fast", "a rate in [0, 1]");
-  require(finite_positive(c.recovery_fit_distance), "recovery_fit_distance",
-          "a positive distance in metres");
   require(
       std::isfinite(c.recovery_fit_band) && c.recovery_fit_band >= 0.0 && c.recovery_fit_band < 1.0,
       "recovery_fit_band", "a fraction in [0, 1)");

@@ -78,7 +78,7 @@ Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
       recovery({.alpha_slow = config.recovery_alpha_slow,
                 .alpha_fast = config.recovery_alpha_fast,
                 .band = config.recovery_fit_band}),
-      fit(map, config.recovery_fit_distance),
+      fit(map, mixture_of(config), config.laser_likelihood_max_dist),
       summarize(ClusterConfig{.bin_x = config.kld_bin_xy,
                               .bin_y = config.kld_bin_xy,
                               .bin_theta = config.kld_bin_theta}) {
@@ -201,16 +201,14 @@ void Localizer::Impl::maybe_resample() {
 }
 
 void Localizer::Impl::maybe_inject() {
-  // Table 8.3, line 13, without forcing a resample: each particle is replaced with
-  // probability p_inject by a free-space pose and keeps its weight. The decision does not
-  // depend on the pose, so the set becomes (1 - p) posterior + p uniform over free space, as
-  // the book's injection during resampling gives, while the ESS gate alone decides when to
+  // Table 8.3, line 13, without forcing a resample: the weakest particles make room for
+  // free-space poses (inject_into_weighted says how), and the ESS gate alone decides when to
   // resample.
   if (!has_odometry) return;
   const double p_inject = recovery.injection_probability();
   if (p_inject <= 0.0) return;
   stats.injected =
-      inject_random_particles(store.view(), p_inject, map, config.seed, step, config.grain);
+      inject_into_weighted(store.view(), p_inject, map, config.seed, step, config.grain);
 }
 
 void Localizer::Impl::adapt_motion_noise(const Pose2& odometry) {

@@ -20,9 +20,10 @@ double small_rotation(double rot) {
 
 Increments increments_of(const Pose2& step) {
   const double trans = std::hypot(step.x, step.y);
-  const double rot1 = trans < 0.01 ? 0.0 : small_rotation(std::atan2(step.y, step.x));
-  const double rot2 = small_rotation(wrap_angle(step.theta - rot1));
-  return {rot1 * rot1, trans * trans, rot2 * rot2};
+  const double rot1 = trans < 0.01 ? 0.0 : std::atan2(step.y, step.x);
+  const double r1 = small_rotation(rot1);
+  const double r2 = small_rotation(wrap_angle(step.theta - rot1));
+  return {r1 * r1, trans * trans, r2 * r2};
 }
 
 }  // namespace

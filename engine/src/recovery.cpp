@@ -9,6 +9,7 @@
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/engine/philox.hpp"
+#include "mote/engine/weights.hpp"
 
 namespace mote {
 namespace {
@@ -75,6 +76,47 @@ std::size_t inject_random_particles(const ParticleView& p, double probability,
         return replaced;
       },
       /*join=*/[](std::size_t a, std::size_t b) { return a + b; });
+}
+
+std::size_t inject_into_weighted(const ParticleView& p, double probability, const FreeSpace& space,
+                                 std::uint64_t seed, std::uint64_t step, std::size_t grain) {
+  const std::size_t n = p.size();
+  if (probability <= 0.0 || n == 0 || space.free_cell_count() == 0) return 0;
+  // At most the mean weight, to float rounding: a freshly resampled set (every log-weight
+  // -log N, as set_uniform_weights writes it) is eligible as a whole, as in the book.
+  const float mean_logw = -std::log(static_cast<float>(n));
+  const float eligible_below = mean_logw + 1e-6F * std::abs(mean_logw);
+  const std::size_t below = par::reduce(
+      n, grain, std::size_t{0},
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        std::size_t k = 0;
+        for (std::size_t i = begin; i < end; ++i) k += (p.logw[i] <= eligible_below) ? 1 : 0;
+        return k;
+      },
+      /*join=*/[](std::size_t a, std::size_t b) { return a + b; });
+  if (below == 0) return 0;
+  const double replace =
+      std::min(1.0, probability * static_cast<double>(n) / static_cast<double>(below));
+  const RngStream decide{seed, step, RngPurpose::kInjection};
+  const RngStream where{seed, step, RngPurpose::kFreePose};
+  const std::size_t replaced = par::reduce(
+      n, grain, std::size_t{0},
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        std::size_t k = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+          const auto idx = static_cast<std::uint32_t>(i);
+          if (!(p.logw[i] <= eligible_below) || decide.uniform_double(idx) >= replace) continue;
+          p.set_pose(i, free_pose(space, where, idx));
+          p.logw[i] = mean_logw;
+          ++k;
+        }
+        return k;
+      },
+      /*join=*/[](std::size_t a, std::size_t b) { return a + b; });
+  (void)normalize(p, grain);
+  return replaced;
 }
 
 void initialize_gaussian(ParticleStore& store, std::size_t n, const Pose2& mean,

@@ -6,11 +6,12 @@
 
 namespace mote {
 
-ScanFit::ScanFit(const OccupancyGrid& grid, double tolerance_m)
+ScanFit::ScanFit(const OccupancyGrid& grid, const MixtureParams& mixture, double max_distance)
     : grid_(grid),
-      field_(grid, {.unknown_is_obstacle = false,
-                    .max_distance = static_cast<float>(2.0 * tolerance_m + grid.resolution())}),
-      tolerance_(static_cast<float>(tolerance_m)) {}
+      field_(grid,
+             {.unknown_is_obstacle = false, .max_distance = static_cast<float>(max_distance)}),
+      mixture_(mixture),
+      max_distance_(static_cast<float>(max_distance)) {}
 
 double ScanFit::operator()(const BeamSet& beams, const ConstParticleView& p) const {
   const std::size_t n = p.size();
@@ -31,22 +32,24 @@ double ScanFit::operator()(const BeamSet& beams, const ConstParticleView& p) con
   for (std::size_t i = 0; i < n; i += stride) {
     const double w = std::exp(static_cast<double>(p.logw[i]));
     if (!(w > 0.0) || !is_finite(p.pose(i))) continue;
-    weighted += w * explained_share(ends, p.pose(i));
+    weighted += w * std::exp(mean_log_density(ends, p.pose(i), beams.range_max));
     total += w;
   }
   return total > 0.0 ? weighted / total : 0.0;
 }
 
-double ScanFit::explained_share(const std::vector<Point2>& ends, const Pose2& pose) const {
+double ScanFit::mean_log_density(const std::vector<Point2>& ends, const Pose2& pose,
+                                 double range_max) const {
   const double c = std::cos(pose.theta);
   const double s = std::sin(pose.theta);
-  std::size_t near = 0;
+  double sum = 0.0;
   for (const Point2& e : ends) {
     const CellIndex cell =
         grid_.world_to_cell({pose.x + c * e.x - s * e.y, pose.y + s * e.x + c * e.y});
-    if (grid_.contains(cell) && field_.at(cell) <= tolerance_) ++near;
+    const float d = grid_.contains(cell) ? field_.at(cell) : max_distance_;
+    sum += std::log(likelihood_field_density(d, range_max, mixture_));
   }
-  return static_cast<double>(near) / static_cast<double>(ends.size());
+  return sum / static_cast<double>(ends.size());
 }
 
 }  // namespace mote

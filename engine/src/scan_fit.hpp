@@ -8,35 +8,41 @@
 
 #include "mote/engine/beams.hpp"
 #include "mote/engine/particles.hpp"
+#include "mote/engine/sensor_model.hpp"
 #include "mote/maps/distance_field.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 
 namespace mote {
 
-/// The share of a scan's beam endpoints that land within `tolerance` of a mapped obstacle,
-/// averaged over the particles by their normalized weights: about 0.8-1 while the filter
-/// tracks, the share a random pose gets (0.1-0.4 in the logs we have) once it is lost. Thrun's
-/// w_avg, the mean likelihood itself, scales with e^(beams) and with the tempering exponent,
-/// so its w_fast / w_slow ratio signals a failure only for one beam count and model; a share
-/// of beams has no such scale.
+/// The per-beam geometric mean of the likelihood-field density (Thrun table 6.3, line 8:
+/// z_hit N(d; 0, sigma_hit^2) + z_rand / z_max, d the endpoint's distance to the nearest
+/// obstacle), averaged over the particles by their normalized weights. The scan likelihood
+/// itself, Thrun's w_avg, scales with e^(beams), with the tempering exponent and with the
+/// model (amcl's 1 + sum pz^3 spans 0-2.2 nats for 60 beams), so its w_fast / w_slow ratio
+/// signals a failure only for one beam count and model; a per-beam mean of one fixed density
+/// has no such scale. It is evaluated for the beam model too, from the same map.
 class ScanFit {
  public:
   /// Particles evaluated at most: an even stride over the set (deterministic).
   static constexpr std::size_t kSample = 256;
 
-  /// Distances from the grid's occupied cells, clamped just above the tolerance.
-  ScanFit(const OccupancyGrid& grid, double tolerance_m);
+  /// Distances from the grid's occupied cells, clamped at max_distance (amcl's
+  /// laser_likelihood_max_dist).
+  ScanFit(const OccupancyGrid& grid, const MixtureParams& mixture, double max_distance);
 
-  /// The weighted share in [0, 1], or 0 when no beam has an endpoint (all max range).
+  /// The weighted geometric-mean beam likelihood (> 0), or 0 when no beam has an endpoint
+  /// (every reading at max range) or no particle has weight.
   [[nodiscard]] double operator()(const BeamSet& beams, const ConstParticleView& particles) const;
 
  private:
-  // Share of the robot-frame endpoints `ends` near an obstacle seen from `pose`.
-  [[nodiscard]] double explained_share(const std::vector<Point2>& ends, const Pose2& pose) const;
+  // Mean log density of the robot-frame endpoints `ends` seen from `pose`.
+  [[nodiscard]] double mean_log_density(const std::vector<Point2>& ends, const Pose2& pose,
+                                        double range_max) const;
 
   OccupancyGrid grid_;
   DistanceField field_;
-  float tolerance_;
+  MixtureParams mixture_;
+  float max_distance_;
 };
 
 }  // namespace mote

@@ -1,6 +1,7 @@
 // report.json, the summary table and the output folder of a replay run.
 #include "mote/replay/report.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <iomanip>
@@ -97,6 +98,37 @@ void print_profile(std::ostream& out, const RunProfile& profile) {
 
 }  // namespace
 
+// What the adaptive mechanisms chose over the run: the tempering exponent (median, range),
+// injected particles, resamplings and the odometry noise in use at the end.
+void write_filter_decisions(JsonWriter& json, const ReplayResult& result) {
+  std::vector<double> taus;
+  std::uint64_t injected = 0;
+  std::uint64_t resampled = 0;
+  for (const UpdateRecord& u : result.updates) {
+    taus.push_back(u.tempering);
+    injected += u.injected;
+    resampled += u.resampled ? 1 : 0;
+  }
+  const Percentiles tau = summarize(taus);
+  const double tau_min = taus.empty() ? 0.0 : *std::min_element(taus.begin(), taus.end());
+  json.key("tempering").begin_object();
+  json.member("adaptive", result.config.likelihood_tempering == 0.0);
+  json.member("median", tau.p50).member("min", tau_min).member("max", tau.max);
+  json.end_object();
+  json.member("injected_particles", injected).member("resampled_updates", resampled);
+  const OdometryAlphas a = result.updates.empty() ? OdometryAlphas{} : result.updates.back().alphas;
+  json.key("final_alphas").begin_array();
+  for (const double v : {a.alpha1, a.alpha2, a.alpha3, a.alpha4}) json.value(v);
+  json.end_array();
+}
+
+std::string tempering_text(const ReplayResult& result) {
+  std::vector<double> taus;
+  for (const UpdateRecord& u : result.updates) taus.push_back(u.tempering);
+  const std::string kind = result.config.likelihood_tempering == 0.0 ? "adaptive" : "fixed";
+  return kind + ", median " + str(summarize(taus).p50, 3);
+}
+
 RunFigures run_figures(const ReplayResult& result) {
   RunFigures f;
   f.updates = result.updates.size();
@@ -133,6 +165,7 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   json.member("beams", result.config.max_beams);
   json.member("particles_mean", f.particles_mean);
   json.member("wall_s", result.wall_s);
+  write_filter_decisions(json, result);
   write_timing(json, f);
   write_outcomes(json, result);
   write_errors(json, result);
@@ -147,6 +180,7 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "model", model_name(result.config.laser_model_type));
   row(out, "threads", std::to_string(result.threads));
   row(out, "particles (mean)", str(f.particles_mean, 0));
+  row(out, "tempering", tempering_text(result));
   row(out, "update ms", format_ms(f.update_ms));
   row(out, "particle-beams/s", str(f.particle_beams_per_s / 1e6, 1) + " M");
   row(out, "skipped records", std::to_string(result.reader.records_skipped));

@@ -11,16 +11,19 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 17> kFlags{{
+constexpr std::array<FlagSpec, 18> kFlags{{
     {"map", "MAP.yaml", "map_server map (required)"},
     {"log", "LOG", "recorded log: CARMEN .clf/.log or ROS 1 .bag (required)"},
     {"out", "DIR", "output folder, created if missing (required)"},
     {"reference", "REF.tum", "reference trajectory (TUM); enables accuracy figures"},
     {"config", "CONFIG.yaml", "LocalizerConfig YAML (flat amcl names or nav2 params)"},
+    {"nav2-defaults", "",
+     "nav2_amcl's defaults instead of mote's adaptive ones (fixed tempering 1, no recovery, "
+     "fixed odometry noise, 500-2000 particles)"},
     {"model", "NAME", "likelihood_field or beam (default likelihood_field)"},
     {"particles", "N", "fixed particle count: min = max = N"},
     {"min-particles", "N", "KLD lower bound (default 500)"},
-    {"max-particles", "N", "KLD upper bound and initial count (default 2000)"},
+    {"max-particles", "N", "KLD upper bound and cap of the initial sets (default 100000)"},
     {"beams", "N", "beams used per scan (default 60)"},
     {"threads", "N", "worker threads, 0 = every core (default 0)"},
     {"seed", "N", "random seed (default 42)"},
@@ -104,6 +107,13 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
   if (auto ref = args.text("reference")) o.reference = *ref;
   apply_init(args, o);
   o.reader.lenient = args.has("lenient");
+  if (args.has("nav2-defaults")) {
+    if (args.text("config")) {
+      throw args.error("nav2-defaults",
+                       "cannot be combined with --config: put 'defaults: nav2' in the file");
+    }
+    o.config = nav2_defaults();
+  }
   if (auto path = args.text("config")) {
     LoadedConfig loaded = load_config(*path);
     for (const std::string& w : loaded.warnings) std::cerr << "mote replay: warning: " << w << '\n';

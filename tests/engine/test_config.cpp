@@ -114,7 +114,40 @@ TEST(ParseConfig, BrokenYamlAndMissingFile) {
   EXPECT_THROW((void)load_config("/nonexistent/mote.yaml"), InputError);
 }
 
-TEST(LocalizerConfig, DefaultsAreValid) { EXPECT_NO_THROW(LocalizerConfig{}.validate()); }
+TEST(LocalizerConfig, DefaultsAreValid) {
+  EXPECT_NO_THROW(LocalizerConfig{}.validate());
+  EXPECT_NO_THROW(nav2_defaults().validate());
+}
+
+// A nav2 params file means amcl's behaviour: keys it leaves out take nav2's values, not mote's
+// adaptive ones.
+TEST(LoadConfig, Nav2FileStartsFromNav2Defaults) {
+  const LocalizerConfig c = load_config(test::project_test_data() / "nav2_params.yaml").config;
+  const LocalizerConfig nav2 = nav2_defaults();
+  EXPECT_EQ(c.max_particles, nav2.max_particles);
+  EXPECT_DOUBLE_EQ(c.likelihood_tempering, 1.0);
+  EXPECT_DOUBLE_EQ(c.recovery_alpha_slow, 0.0);
+  EXPECT_FALSE(c.adaptive_motion_noise);
+  EXPECT_DOUBLE_EQ(c.global_particles_per_bin, 0.0);
+}
+
+TEST(ParseConfig, DefaultsKeyChoosesTheBase) {
+  const LocalizerConfig nav2 = parse_config("defaults: nav2\nseed: 3\n", "n.yaml").config;
+  EXPECT_DOUBLE_EQ(nav2.likelihood_tempering, 1.0);
+  EXPECT_EQ(nav2.max_particles, 2000);
+  EXPECT_EQ(nav2.seed, 3U);
+  const LocalizerConfig mote = parse_config("defaults: mote\nseed: 3\n", "m.yaml").config;
+  EXPECT_DOUBLE_EQ(mote.likelihood_tempering, 0.0);
+  EXPECT_TRUE(mote.adaptive_motion_noise);
+  // Order does not matter: defaults applies first.
+  EXPECT_EQ(parse_config("max_particles: 900\ndefaults: nav2\n", "o.yaml").config.max_particles,
+            900);
+  EXPECT_DOUBLE_EQ(
+      parse_config("likelihood_tempering: auto\n", "a.yaml").config.likelihood_tempering, 0.0);
+  expect_input_error("defaults: ros\n", "expected mote or nav2");
+  expect_input_error("likelihood_tempering: 2\n", "likelihood_tempering");
+  expect_input_error("recovery_fit_band: 1\n", "recovery_fit_band");
+}
 
 }  // namespace
 }  // namespace mote

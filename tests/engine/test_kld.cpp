@@ -84,29 +84,70 @@ TEST(KldBins, CountIsIndependentOfThreads) {
   EXPECT_EQ(kld_sample_count(p, bins, config), kld_sample_count(serial, config));
 }
 
-// Count first (from the weighted set's bins), then one systematic draw of exactly n particles.
-TEST(KldResample, DrawsTheCountOfTheWeightedSetsBins) {
-  KldBins bins({-10.0, -10.0, 10.0, 10.0}, 0.5, 0.5, 0.5);
-  ParticleStore store(3000);
+// A weighted set: 3000 particles spread along a line, weights falling off with the index.
+void fill_spread_set(ParticleStore& store) {
   const ParticleView p = store.view();
   for (std::size_t i = 0; i < p.size(); ++i) {
     p.set_pose(i, {0.01 * double(i % 700) - 3.5, 0.002 * double(i), 0.0});
     p.logw[i] = -0.001F * static_cast<float>(i);
   }
   ASSERT_TRUE(normalize(p).ok());
+}
+
+// The bins count_drawn reports before the draw are the bins of the set the draw produces.
+TEST(KldBins, CountDrawnIsTheCountOfTheDrawnSet) {
+  KldBins bins({-10.0, -10.0, 10.0, 10.0}, 0.5, 0.5, 0.5);
+  for (const std::size_t n : {5UL, 50UL, 400UL, 3000UL}) {
+    ParticleStore store(3000);
+    fill_spread_set(store);
+    const std::size_t predicted = bins.count_drawn(store, n, 4, 5);
+    resample_systematic(store, n, 4, 5);
+    EXPECT_EQ(predicted, bins.count(store.view())) << n;
+  }
+}
+
+// Fox's rule: the count is a fixed point n >= n(k(n)) reached from min_particles, and the
+// draw is exactly resample_systematic with that count.
+TEST(KldResample, DrawsFoxsCountForItsOwnBins) {
+  KldBins bins({-10.0, -10.0, 10.0, 10.0}, 0.5, 0.5, 0.5);
+  ParticleStore store(3000);
+  fill_spread_set(store);
   KldConfig config;
   config.min_particles = 10;
   config.max_particles = 100000;
-  const std::size_t expected = kld_sample_count(bins.count(store.view()), config);
   ParticleStore reference(3000);
-  std::copy_n(p.x, 3000, reference.view().x);
-  std::copy_n(p.y, 3000, reference.view().y);
-  std::copy_n(p.logw, 3000, reference.view().logw);
-  EXPECT_EQ(resample_kld_systematic(store, bins, config, 4, 5), expected);
-  EXPECT_EQ(store.size(), expected);
-  resample_systematic_serial(reference, expected, 4, 5);
-  for (std::size_t i = 0; i < expected; ++i)
-    ASSERT_EQ(store.view().pose(i), reference.view().pose(i));
+  fill_spread_set(reference);
+  const std::size_t n = kld_draw_count(reference, bins, config, 4, 5);
+  EXPECT_GE(n, kld_sample_count(bins.count_drawn(reference, n, 4, 5), config));
+  EXPECT_EQ(resample_kld_systematic(store, bins, config, 4, 5), n);
+  EXPECT_EQ(store.size(), n);
+  resample_systematic_serial(reference, n, 4, 5);
+  for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(store.view().pose(i), reference.view().pose(i));
+}
+
+// Seen failing before the count moved to the drawn ancestors: 1000 particles of negligible
+// weight scattered over the map (recovery particles, say) made the support-based count add
+// a bin for each, and the 'converged' set grew to several thousand particles.
+TEST(KldResample, NegligibleScatteredParticlesDoNotGrowTheSet) {
+  KldBins bins({-20.0, -20.0, 20.0, 20.0}, 0.5, 0.5, 10.0 * std::numbers::pi / 180);
+  ParticleStore store(2000);
+  const ParticleView p = store.view();
+  for (std::size_t i = 0; i < 1000; ++i) {
+    p.set_pose(i, {1.0 + 1e-4 * double(i), 1.0, 0.1});  // one bin, all the weight
+    p.logw[i] = 0.0F;
+  }
+  for (std::size_t i = 1000; i < 2000; ++i) {
+    p.set_pose(i,
+               {std::fmod(0.73 * double(i), 36.0) - 18.0, std::fmod(0.31 * double(i), 36.0) - 18.0,
+                std::fmod(0.17 * double(i), 6.0) - 3.0});
+    p.logw[i] = -40.0F;  // e^-40 of a tracked particle's weight
+  }
+  ASSERT_TRUE(normalize(p).ok());
+  KldConfig config;
+  config.min_particles = 100;
+  config.max_particles = 100000;
+  EXPECT_GT(kld_sample_count(store.view(), bins, config), 5000U) << "the support counts them";
+  EXPECT_EQ(resample_kld_systematic(store, bins, config, 1, 2), 100U);
 }
 
 }  // namespace

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <numbers>
+#include <vector>
 
 #include "mote/core/error.hpp"
 #include "mote/maps/map_loader.hpp"
@@ -121,7 +123,10 @@ TEST_F(LocalizerOnIntel, GlobalLocalizationConverges) {
   config.max_particles = 100000;
   Localizer filter(*map_, config);
   filter.initialize_global();
-  EXPECT_EQ(filter.particles().size(), 100000U);
+  // One particle per KLD bin of free space (0.5 m x 0.5 m x 10 degrees).
+  const double bins = static_cast<double>(map_->free_cell_count()) * map_->resolution() *
+                      map_->resolution() / 0.25 * 36.0;
+  EXPECT_NEAR(static_cast<double>(filter.particles().size()), bins, 1.0);
   Drive drive(*map_, start_, 11);
   filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
   for (int k = 0; k < 40; ++k) drive.feed(filter);
@@ -131,35 +136,86 @@ TEST_F(LocalizerOnIntel, GlobalLocalizationConverges) {
   EXPECT_LT(filter.particles().size(), 20000U) << "KLD should shrink a converged set";
 }
 
-TEST_F(LocalizerOnIntel, RecoversFromAKidnapping) {
+// What a kidnapping did to the filter: the error once it is over, the particles injected, the
+// largest share of the set injected in one update, and whether every resampling respected the
+// ESS gate.
+struct KidnapOutcome {
+  Pose2 error_pose;
+  Pose2 truth;
+  std::size_t injected = 0;
+  double max_injected_share = 0.0;
+  bool gate_respected = true;
+};
+
+KidnapOutcome kidnap(const OccupancyGrid& map, Pose2 start, LocalizerConfig config,
+                     int updates = 60) {
+  Localizer filter(map, config);
+  filter.initialize(start, diagonal_covariance(0.05, 2 * kDeg));
+  Drive drive(map, start, 13);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 10; ++k) drive.feed(filter);
+  EXPECT_LT(test::position_error(filter.estimate().best().mean, drive.truth), 0.1);
+
+  // Carry the robot 20 updates further along its way without telling the odometry.
+  Drive elsewhere(map, drive.truth, 17);
+  for (int k = 0; k < 20; ++k) elsewhere.advance();
+  drive.truth = elsewhere.truth;
+  EXPECT_GT(test::position_error(filter.estimate().best().mean, drive.truth), 2.0);
+
+  KidnapOutcome out;
+  for (int k = 0; k < updates; ++k) {
+    drive.feed(filter);
+    const UpdateStats& u = filter.last_update();
+    out.injected += u.injected;
+    out.max_injected_share = std::max(
+        out.max_injected_share, static_cast<double>(u.injected) / static_cast<double>(u.particles));
+    // Issue 14.2: injection no longer forces a resample; only the ESS gate does.
+    const bool below_gate = u.effective_sample_size < 0.5 * static_cast<double>(u.weighed);
+    if (u.resampled != below_gate) out.gate_respected = false;
+  }
+  out.error_pose = filter.estimate().best().mean;
+  out.truth = drive.truth;
+  return out;
+}
+
+LocalizerConfig kidnap_config() {
   LocalizerConfig config = tracking_config(0);
   config.min_particles = 5000;
   config.max_particles = 50000;
-  config.recovery_alpha_slow = 0.001;
-  config.recovery_alpha_fast = 0.1;
-  Localizer filter(*map_, config);
-  filter.initialize(start_, diagonal_covariance(0.05, 2 * kDeg));
-  Drive drive(*map_, start_, 13);
-  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
-  for (int k = 0; k < 10; ++k) drive.feed(filter);
-  ASSERT_LT(test::position_error(filter.estimate().best().mean, drive.truth), 0.1);
+  return config;  // recovery on: mote's defaults
+}
 
-  // Carry the robot 20 updates further along its way without telling the odometry.
-  Drive elsewhere(*map_, drive.truth, 17);
-  for (int k = 0; k < 20; ++k) elsewhere.advance();
-  drive.truth = elsewhere.truth;
-  ASSERT_GT(test::position_error(filter.estimate().best().mean, drive.truth), 2.0);
+// Found again: within the convergence bounds `mote replay` reports (0.5 m, 10 degrees).
+// Accuracy once found is the tracking tests' business.
+void expect_recovered(const KidnapOutcome& out) {
+  EXPECT_GT(out.injected, 0U);
+  EXPECT_TRUE(out.gate_respected);
+  EXPECT_LT(test::position_error(out.error_pose, out.truth), 0.5);
+  EXPECT_LT(test::heading_error(out.error_pose, out.truth), 10 * kDeg);
+}
 
-  std::size_t injected = 0;
-  for (int k = 0; k < 60; ++k) {
-    drive.feed(filter);
-    injected += filter.last_update().injected;
+TEST_F(LocalizerOnIntel, RecoversFromAKidnapping) {
+  expect_recovered(kidnap(*map_, start_, kidnap_config()));
+}
+
+// Issue 14.1: fed log(1 + sum pz^3) / beams, augmented MCL could not inject more than a few
+// percent of the set in amcl mode, and its rate moved with the beam count. The scan fit it
+// tracks now drops the same way for 60 and 180 beams, and injection takes over. (amcl's
+// cubed sum is too flat to single out the injected particle near the truth again within
+// 200 updates on this map; the product does so within 60, RecoversFromAKidnapping.)
+TEST_F(LocalizerOnIntel, InjectsAfterAKidnappingInAmclModeAlikeFor60And180Beams) {
+  std::vector<double> shares;
+  for (const int beams : {60, 180}) {
+    LocalizerConfig config = kidnap_config();
+    config.likelihood_combination = LikelihoodCombination::kAmclCubedSum;
+    config.max_beams = beams;
+    const KidnapOutcome out = kidnap(*map_, start_, config, 20);
+    SCOPED_TRACE(beams);
+    EXPECT_GT(out.max_injected_share, 0.3);
+    EXPECT_TRUE(out.gate_respected);
+    shares.push_back(out.max_injected_share);
   }
-  // Found again: within the convergence bounds `mote replay` reports (0.5 m, 10 degrees).
-  // Accuracy once found is the tracking tests' business.
-  EXPECT_GT(injected, 0U);
-  EXPECT_LT(test::position_error(filter.estimate().best().mean, drive.truth), 0.5);
-  EXPECT_LT(test::heading_error(filter.estimate().best().mean, drive.truth), 10 * kDeg);
+  EXPECT_NEAR(shares[0], shares[1], 0.25 * shares[0]);
 }
 
 // Runs 100 updates and returns the particle columns, bytes and all.

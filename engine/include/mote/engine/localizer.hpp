@@ -59,8 +59,7 @@ enum class UpdateOutcome : std::uint8_t {
 struct PhaseTimes {
   double motion = 0.0;
   double sensor = 0.0;
-  double tempering = 0.0;  ///< the scan fit and the exponent search (tempering.hpp)
-  double normalize = 0.0;
+  double normalize = 0.0;  ///< with the tempering search and the scan fit
   double resample = 0.0;
   double estimate = 0.0;
   double total = 0.0;
@@ -79,8 +78,8 @@ struct UpdateStats {
   std::size_t injected = 0;  ///< recovery particles drawn from free space
   double tempering = 1.0;    ///< likelihood exponent tau applied to this scan
   int tempering_trials = 0;  ///< ESS evaluations of the adaptive search (0 when fixed)
-  /// Weighted share of beam endpoints within recovery_fit_distance of an obstacle at the
-  /// predicted particles: what augmented MCL's w_slow / w_fast average.
+  /// Per-beam geometric mean of the likelihood-field density at the posterior particles
+  /// (scan_fit.hpp): what augmented MCL's w_slow / w_fast average.
   double scan_fit = 0.0;
   /// The odometry noise the next motion step samples with (config's until adapted).
   OdometryAlphas alphas;

@@ -61,13 +61,12 @@ struct LocalizerConfig {
   /// w_slow smoothing rate (Thrun table 8.3); 0 disables injection (nav2's default).
   double recovery_alpha_slow = 0.001;
   double recovery_alpha_fast = 0.1;  ///< w_fast smoothing rate; must exceed alpha_slow
-  /// m: a beam endpoint this close to a mapped obstacle counts as explained. Augmented MCL
-  /// tracks the weighted share of explained endpoints (scan fit), not the scan likelihood, so
-  /// its injection rate means the same for any beam count, model and tempering.
-  double recovery_fit_distance = 0.2;
-  /// Injection starts once the short-term fit falls below (1 - band) of the long-term one: a
-  /// quarter of the endpoints the map used to explain no longer are (recovery.hpp). nav2: 0.
-  double recovery_fit_band = 0.25;
+  /// Augmented MCL tracks the scan fit, the per-beam geometric mean of the likelihood-field
+  /// density at the particles (UpdateStats::scan_fit), not the scan likelihood, so its
+  /// injection rate means the same for any beam count, model and tempering. Injection starts
+  /// once the short-term fit falls below (1 - band) of the long-term one (recovery.hpp).
+  /// nav2: 0, the book's rule.
+  double recovery_fit_band = 0.5;
 
   // --- update gate ---------------------------------------------------------------------------
   double update_min_d = 0.25;  ///< m of translation before the filter updates

@@ -64,6 +64,21 @@ std::size_t inject_random_particles(const ParticleView& particles, double probab
                                     const FreeSpace& space, std::uint64_t seed, std::uint64_t step,
                                     std::size_t grain = kDefaultGrain);
 
+/// Injection into a weighted set, without resampling it (augmented MCL when resampling is
+/// selective). Only particles whose normalized weight is at most the mean 1/N may be replaced
+/// (all of them in a freshly resampled set), each with probability
+/// min(1, probability * N / (number eligible)), so that about
+/// probability * N are; an injected particle gets the mean weight 1/N, and the weights are
+/// renormalized. The set's mass thus moves from its weakest members to uniform free-space
+/// poses, about as the book's (1 - p) posterior + p uniform mixture, while the hypotheses
+/// that carry the weight survive until resampling can copy them: replacing particles
+/// regardless of their weight would discard the evidence a right but young hypothesis has
+/// gathered over a few updates. log-weights must be normalized. Deterministic (Philox keyed by
+/// seed, step and index). Returns how many particles were replaced.
+std::size_t inject_into_weighted(const ParticleView& particles, double probability,
+                                 const FreeSpace& space, std::uint64_t seed, std::uint64_t step,
+                                 std::size_t grain = kDefaultGrain);
+
 /// Sets every particle to mean + L n with L L^T = covariance (Cholesky, Eigen) and n standard
 /// normal from Philox (seed, step 0, RngPurpose::kInitial); theta wrapped; uniform weights.
 /// covariance over (x m, y m, theta rad) must be symmetric positive semi-definite (a zero

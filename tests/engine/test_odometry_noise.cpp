@@ -1,0 +1,75 @@
+// The online odometry-noise fit: residuals drawn with known alphas give those alphas back.
+#include "mote/engine/odometry_noise.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace mote {
+namespace {
+
+// Steps of a robot that drives and turns, and estimates that differ from the odometry by
+// table 5.6's noise with the given alphas.
+OdometryNoiseEstimator fitted(const OdometryAlphas& truth, int steps, OdometryNoiseConfig config) {
+  OdometryNoiseEstimator estimator(config);
+  std::mt19937 gen(5);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Pose2 odom;
+  Pose2 est;
+  for (int k = 0; k < steps; ++k) {
+    const double trans = 0.3 * (1.0 + uniform(gen)) + 0.05;
+    const double rot1 = 0.3 * uniform(gen);
+    const double rot2 = 0.3 * uniform(gen);
+    const double t2 = trans * trans;
+    const double rot1_hat =
+        rot1 + normal(gen) * std::sqrt(truth.alpha1 * rot1 * rot1 + truth.alpha2 * t2);
+    const double rot2_hat =
+        rot2 + normal(gen) * std::sqrt(truth.alpha1 * rot2 * rot2 + truth.alpha2 * t2);
+    const double trans_hat =
+        trans +
+        normal(gen) * std::sqrt(truth.alpha3 * t2 + truth.alpha4 * (rot1 * rot1 + rot2 * rot2));
+    const Pose2 odom_next =
+        compose(odom, {trans * std::cos(rot1), trans * std::sin(rot1), rot1 + rot2});
+    const Pose2 est_next = compose(
+        est, {trans_hat * std::cos(rot1_hat), trans_hat * std::sin(rot1_hat), rot1_hat + rot2_hat});
+    estimator.add(odom, odom_next, est, est_next);
+    odom = odom_next;
+    est = est_next;
+  }
+  return estimator;
+}
+
+TEST(OdometryNoiseEstimator, RecoversTheAlphasOfItsResiduals) {
+  const OdometryAlphas truth{0.05, 0.01, 0.02, 0.005};
+  const OdometryNoiseConfig config{.forgetting = 1.0, .safety = 1.0, .alpha_min = 0.0};
+  const auto a = fitted(truth, 20000, config).alphas();
+  ASSERT_TRUE(a.has_value());
+  // Rotation: the fit sees rot1 + rot2 noise; translation also the lateral part of rot1's
+  // noise (trans^2 alpha1 rot1^2 ...), which it folds into its two terms: loose bounds there.
+  EXPECT_NEAR(a->alpha1, truth.alpha1, 0.2 * truth.alpha1);
+  EXPECT_NEAR(a->alpha2, truth.alpha2, 0.3 * truth.alpha2);
+  EXPECT_NEAR(a->alpha3, truth.alpha3, 0.5 * truth.alpha3);
+  EXPECT_LT(a->alpha4, 0.05);
+}
+
+TEST(OdometryNoiseEstimator, AppliesSafetyAndBoundsAndWaitsForSamples) {
+  const OdometryAlphas truth{0.05, 0.01, 0.02, 0.005};
+  OdometryNoiseConfig config{.safety = 2.0, .alpha_min = 0.05, .alpha_max = 0.08};
+  EXPECT_FALSE(fitted(truth, 10, config).alphas().has_value());
+  const auto a = fitted(truth, 2000, config).alphas();
+  ASSERT_TRUE(a.has_value());
+  EXPECT_EQ(a->alpha1, 0.08);  // 2 x 0.05 capped
+  EXPECT_EQ(a->alpha4, 0.05);  // 2 x 0.005 (plus lateral noise) raised to the floor
+}
+
+TEST(OdometryNoiseEstimator, LeavesRelocalizationJumpsOut) {
+  OdometryNoiseEstimator estimator;
+  EXPECT_FALSE(estimator.add({}, {0.3, 0.0, 0.0}, {}, {3.0, 2.0, 1.0}));
+  EXPECT_FALSE(estimator.add({}, {0.3, 0.0, 0.0}, {}, {0.3, 0.0, 1.2}));
+  EXPECT_TRUE(estimator.add({}, {0.3, 0.0, 0.0}, {}, {0.31, 0.0, 0.01}));
+}
+
+}  // namespace
+}  // namespace mote
