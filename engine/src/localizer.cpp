@@ -3,6 +3,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "localizer_impl.hpp"
 #include "mote/core/error.hpp"
@@ -78,17 +80,31 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
     return s.reject(UpdateOutcome::kRejectedOdometry, "odometry pose is not finite");
   if (const std::string problem = scan_geometry_problem(scan); !problem.empty())
     return s.reject(UpdateOutcome::kRejectedScan, problem);
-  if (!s.select(scan)) return s.reject(UpdateOutcome::kRejectedScan, "no valid beam in the scan");
+  if (std::string problem = s.select(scan); !problem.empty())
+    return s.reject(UpdateOutcome::kRejectedScan, std::move(problem));
   if (s.has_odometry && s.jumped(odometry)) return s.reset_odometry(odometry);
   if (s.has_odometry && !s.moved_enough(odometry)) return s.reject(UpdateOutcome::kNotMoved, "");
 
-  s.executor.run([&] {
-    if (s.has_odometry) timed(s.stats.ms.motion, [&] { s.predict(odometry); });
-    timed(s.stats.ms.sensor, [&] { s.weigh(); });
-    timed(s.stats.ms.normalize, [&] { s.normalize(); });
-    timed(s.stats.ms.resample, [&] { s.maybe_resample(); });
-    timed(s.stats.ms.estimate, [&] { s.update_estimate(); });
-  });
+  // The checks above leave nothing in this block that throws for a well-formed call; should it
+  // throw anyway (out of memory), the motion already applied counts as applied, so the next
+  // update does not apply it again (localizer.hpp).
+  bool moved = false;
+  try {
+    s.executor.run([&] {
+      if (s.has_odometry) timed(s.stats.ms.motion, [&] { s.predict(odometry); });
+      moved = s.has_odometry;
+      timed(s.stats.ms.sensor, [&] { s.weigh(); });
+      timed(s.stats.ms.normalize, [&] { s.normalize(); });
+      timed(s.stats.ms.resample, [&] { s.maybe_resample(); });
+      timed(s.stats.ms.estimate, [&] { s.update_estimate(); });
+    });
+  } catch (...) {
+    if (moved) {
+      s.last_odometry = odometry;
+      ++s.step;
+    }
+    throw;
+  }
   s.stats.outcome = s.degenerate     ? UpdateOutcome::kUnexplainedScan
                     : s.has_odometry ? UpdateOutcome::kUpdated
                                      : UpdateOutcome::kInitialized;
