@@ -14,7 +14,7 @@
 ///    would ray-cast to it (laser_max_range < 0 takes the scan's), or
 ///    without a valid reading (all NaN, negative, below range_min; or all at max range with the
 ///    likelihood field, which ignores max-range readings as amcl does): kRejectedScan, nothing
-///    changes. The beam model weighs all-max-range scans through its z_max term;
+///    changes. The beam model weighs all-max-range scans (eq. 6.12 at z = z_max);
 ///  - a scan no particle explains (every likelihood zero): kUnexplainedScan, weights left
 ///    uniform instead of NaN;
 ///  - a config with min_particles < 1 or other invalid values: ConfigError from the
