@@ -112,7 +112,9 @@ void expect_weights_finite_where_defined(Model& model) {
   weigh_scan(model, b, store.view());
   const ConstParticleView p = std::as_const(store).view();
   for (std::size_t i = 0; i < kParticles; ++i) {
-    if (poison_of(i).column == -1) EXPECT_FALSE(std::isnan(p.logw[i])) << "particle " << i;
+    if (poison_of(i).column == -1) {
+      EXPECT_FALSE(std::isnan(p.logw[i])) << "particle " << i;
+    }
   }
 }
 
@@ -166,7 +168,9 @@ TEST(NonFiniteColumns, EstimatesIgnoreParticlesWithoutWeight) {
   const ParticleSummary& s = summarize(std::as_const(store).view());
   EXPECT_TRUE(is_finite(s.overall.mean));
   for (const PoseEstimate& c : s.clusters) {
-    if (c.weight > 0.0) EXPECT_TRUE(is_finite(c.mean));
+    if (c.weight > 0.0) {
+      EXPECT_TRUE(is_finite(c.mean));
+    }
   }
   // And with weight on non-finite poses: no crash, whatever the (undefined) mean is.
   ParticleStore raw = poisoned_store();
