@@ -37,6 +37,11 @@ endfunction()
 macro(mote_apply_sanitizers)
   if(MOTE_SANITIZE)
     string(REPLACE ";" "," _mote_san "${MOTE_SANITIZE}")
+    # GCC's -fsanitize=undefined leaves out float-cast-overflow (clang's includes it): add it, so
+    # a NaN or out-of-range float converted to an integer is caught with either compiler.
+    if("undefined" IN_LIST MOTE_SANITIZE)
+      string(APPEND _mote_san ",float-cast-overflow")
+    endif()
     add_compile_options(-fsanitize=${_mote_san} -fno-omit-frame-pointer -fno-sanitize-recover=all)
     add_link_options(-fsanitize=${_mote_san})
     if("thread" IN_LIST MOTE_SANITIZE)

@@ -43,20 +43,21 @@ struct ExpReduction {
                                                            r * (1.0F / 720 + r * (1.0F / 5040))))));
 }
 
-// exp(x) for x <= 0, x not NaN; exactly 0 below -87. A few float ulp.
+// exp(x) for x <= 0; exactly 0 below -87 and for NaN (which fails x >= -87, so never reaches
+// reduce_exp's int conversion). A few float ulp.
 [[nodiscard]] inline float exp_nonpositive(float x) noexcept {
-  const float clamped = x < -87.0F ? -87.0F : (x > 0.0F ? 0.0F : x);
+  const float clamped = x >= -87.0F ? (x > 0.0F ? 0.0F : x) : -87.0F;
   const ExpReduction e = reduce_exp(clamped);
   const float value = e.scale + e.scale * (e.r * expm1_ratio(e.r));
-  const std::uint32_t keep = x < -87.0F ? 0U : ~0U;
+  const std::uint32_t keep = x >= -87.0F ? ~0U : 0U;
   return std::bit_cast<float>(std::bit_cast<std::uint32_t>(value) & keep);
 }
 
-// exp(x) - 1 for x <= 0, x not NaN, without cancellation near 0: e^x - 1 = 2^k (e^r - 1) +
-// (2^k - 1), where k = 0 (no subtraction at all) for |x| < 0.35 and the subtraction loses at
-// most a factor 1.7 beyond.
+// exp(x) - 1 for x <= 0 without cancellation near 0: e^x - 1 = 2^k (e^r - 1) + (2^k - 1), where
+// k = 0 (no subtraction at all) for |x| < 0.35 and the subtraction loses at most a factor 1.7
+// beyond. NaN is taken as -87 (result -1), never converted.
 [[nodiscard]] inline float expm1_nonpositive(float x) noexcept {
-  const float clamped = x < -87.0F ? -87.0F : (x > 0.0F ? 0.0F : x);
+  const float clamped = x >= -87.0F ? (x > 0.0F ? 0.0F : x) : -87.0F;
   const ExpReduction e = reduce_exp(clamped);
   return e.scale * (e.r * expm1_ratio(e.r)) + (e.scale - 1.0F);
 }

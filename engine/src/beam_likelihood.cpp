@@ -20,9 +20,11 @@ namespace detail {
 BeamTerms beam_terms(float z, float range_max, const MixtureParams& p) noexcept {
   const double sigma = p.sigma_hit;
   const double lambda = p.lambda_short;
+  const bool max_range = z >= range_max;
+  if (max_range) z = range_max;
   return {.z = z,
           .range_max = range_max,
-          .rand = static_cast<float>(p.z_rand / range_max),
+          .base = static_cast<float>(max_range ? p.z_max : p.z_rand / range_max),
           .hit_scale = static_cast<float>(p.z_hit / (std::sqrt(2.0 * std::numbers::pi) * sigma)),
           .hit_exponent = static_cast<float>(-0.5 / (sigma * sigma)),
           .inv_sigma_sqrt2 = static_cast<float>(1.0 / (sigma * std::numbers::sqrt2)),
@@ -35,7 +37,7 @@ BeamTerms beam_terms(float z, float range_max, const MixtureParams& p) noexcept 
 bool float_terms_usable(const BeamTerms& t) noexcept {
   const float widest_erfc_argument = t.range_max * t.inv_sigma_sqrt2;
   return std::isfinite(t.range_max * t.range_max) &&
-         std::isfinite(widest_erfc_argument * widest_erfc_argument) && std::isfinite(t.rand) &&
+         std::isfinite(widest_erfc_argument * widest_erfc_argument) && std::isfinite(t.base) &&
          std::isfinite(t.hit_scale) && std::isfinite(t.hit_exponent) && t.hit_exponent < 0.0F &&
          std::isfinite(t.short_scale) && std::isfinite(t.lambda);
 }
@@ -58,8 +60,8 @@ constexpr float kMaxMixture = 0x1p90F;
 // How one beam is weighed, decided once per call from its reading alone.
 struct BeamPlan {
   enum class Kind {
-    kConstant,  // z >= z_max (p_max only) or z < 0 (p_rand only): the same for every z*
-    kFloat,     // the vectorized float mixture
+    kConstant,  // z < 0 or NaN (p_rand only): the same for every z*
+    kFloat,     // the vectorized float mixture (z >= z_max taken as z_max)
     kExact,     // beam_log_likelihood for every particle (parameters float cannot hold)
   };
   Kind kind;
@@ -69,12 +71,14 @@ struct BeamPlan {
 };
 
 BeamPlan plan_beam(float z, float range_max, const MixtureParams& p) {
-  if (!(z >= 0.0F && z < range_max)) {
+  if (!(z >= 0.0F)) {
     return {BeamPlan::Kind::kConstant, z, beam_log_likelihood(z, 0.0, range_max, p), {}};
   }
-  const detail::BeamTerms terms = detail::beam_terms(z, range_max, p);
+  // A max-range reading depends on z* too (p_hit and p_short at z_max, eq. 6.12).
+  const float reading = z < range_max ? z : range_max;
+  const detail::BeamTerms terms = detail::beam_terms(reading, range_max, p);
   const bool usable = detail::float_terms_usable(terms);
-  return {usable ? BeamPlan::Kind::kFloat : BeamPlan::Kind::kExact, z, 0.0, terms};
+  return {usable ? BeamPlan::Kind::kFloat : BeamPlan::Kind::kExact, reading, 0.0, terms};
 }
 
 struct Block {

@@ -12,12 +12,14 @@
 
 namespace mote::detail {
 
-// Everything of the mixture that depends only on the reading z (0 <= z < z_max) and the
-// parameters: computed once per beam per scan, in double, then rounded.
+// Everything of the mixture that depends only on the reading z (0 <= z <= z_max, z_max for a
+// max-range reading) and the parameters: computed once per beam per scan, in double, then
+// rounded.
 struct BeamTerms {
   float z;                // m, the reading
   float range_max;        // m, z_max
-  float rand;             // z_rand / z_max (eq. 6.11)
+  float base;             // the term without z*: z_rand / z_max (eq. 6.11) for z < z_max,
+                          // z_max's weight (eq. 6.10, p_rand being 0) for z = z_max
   float hit_scale;        // z_hit / (sqrt(2 pi) sigma_hit) (eq. 6.4)
   float hit_exponent;     // -1 / (2 sigma_hit^2)
   float inv_sigma_sqrt2;  // 1 / (sigma_hit sqrt 2): erfc's argument scale (eq. 6.6)
@@ -58,7 +60,7 @@ template <Tails kTails>
   }
 }
 
-// p(z | z*) of table 6.1 without p_max (z < z_max), for 0 <= z* <= z_max.
+// p(z | z*) of table 6.1 (eq. 6.12) for 0 <= z* <= z_max.
 template <Tails kTails>
 [[nodiscard]] inline float beam_mixture(const BeamTerms& t, float z_star) noexcept {
   const float d = t.z - z_star;
@@ -69,7 +71,7 @@ template <Tails kTails>
   const float short_mass = select(is_short, -expm1_nonpositive(-t.lambda * z_star), 1.0F);
   const float short_density = select(is_short, t.short_scale, 0.0F);
   // gaussian / mass + short_density / short_mass over one division.
-  return t.rand + (gaussian * short_mass + short_density * mass) / (mass * short_mass);
+  return t.base + (gaussian * short_mass + short_density * mass) / (mass * short_mass);
 }
 
 }  // namespace mote::detail

@@ -199,11 +199,6 @@ YAML::Node parameter_map(const YAML::Node& root) {
   return root;
 }
 
-// Parameter counts that size allocations (particle store, task arena): a file asking for more is
-// more likely corrupt than meant, and would exhaust memory instead of failing with its name.
-constexpr int kMaxParticlesFromFile = 100'000'000;
-constexpr int kMaxThreadsFromFile = 1024;
-
 YAML::Node parse_yaml(const std::string& yaml_text, const std::string& name) {
   try {
     YAML::Node root = YAML::Load(yaml_text);
@@ -235,18 +230,6 @@ std::string place_in(const YAML::Node& params, const std::string& key) {
   return "key '" + key + "'";
 }
 
-void check_sizes(const LocalizerConfig& c, const YAML::Node& params, const std::string& name) {
-  if (c.max_particles > kMaxParticlesFromFile || c.min_particles > kMaxParticlesFromFile) {
-    const char* key = c.max_particles > kMaxParticlesFromFile ? "max_particles" : "min_particles";
-    throw InputError(name, place_in(params, key),
-                     "at most " + std::to_string(kMaxParticlesFromFile) + " particles");
-  }
-  if (c.threads > kMaxThreadsFromFile) {
-    throw InputError(name, place_in(params, "threads"),
-                     "at most " + std::to_string(kMaxThreadsFromFile) + " threads");
-  }
-}
-
 /// validate(), with its ConfigError ("LocalizerConfig.FIELD: expected ...") placed in the file.
 void validate(const LocalizerConfig& c, const YAML::Node& params, const std::string& name) {
   try {
@@ -260,7 +243,6 @@ void validate(const LocalizerConfig& c, const YAML::Node& params, const std::str
                                   : std::string();
     throw InputError(name, field.empty() ? "line 1" : place_in(params, field), e.what());
   }
-  check_sizes(c, params, name);
 }
 
 // What keys absent from the file default to: a nav2 or ROS amcl params file means amcl's

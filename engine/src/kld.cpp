@@ -14,6 +14,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <string>
 
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
@@ -68,26 +69,56 @@ std::size_t kld_sample_count(std::size_t k, const KldConfig& config) {
   return static_cast<std::size_t>(bounded);
 }
 
+namespace {
+
+// At most 2^32 bins, a 512 MB bitset: smaller bins over the region are a configuration error,
+// not an allocation to attempt.
+constexpr double kMaxBins = 4294967296.0;
+
+// Validates the sizes and the region before the member initializers divide by the sizes and
+// convert bin counts to integers (both undefined for a zero, NaN or infinite size).
+const Bounds2& checked(const Bounds2& region, double bin_x, double bin_y, double bin_theta) {
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  const bool region_ok = std::isfinite(region.min_x) && std::isfinite(region.min_y) &&
+                         std::isfinite(region.max_x) && std::isfinite(region.max_y) &&
+                         region.max_x >= region.min_x && region.max_y >= region.min_y;
+  if (!positive(bin_x) || !positive(bin_y) || !positive(bin_theta) || !region_ok) {
+    throw ConfigError(
+        "KldBins: bin sizes must be positive and finite, the region finite and non-empty");
+  }
+  const double bins = (std::ceil((region.max_x - region.min_x) / bin_x) + 1.0) *
+                      (std::ceil((region.max_y - region.min_y) / bin_y) + 1.0) *
+                      std::ceil(2.0 * std::numbers::pi / bin_theta);
+  if (!(bins <= kMaxBins)) {
+    throw ConfigError("KldBins: " + std::to_string(bins) +
+                      " bins over the region, more than 2^32: the bin sizes are too small");
+  }
+  return region;
+}
+
+}  // namespace
+
 KldBins::KldBins(const Bounds2& region, double bin_x, double bin_y, double bin_theta)
-    : region_(region),
+    : region_(checked(region, bin_x, bin_y, bin_theta)),
       inv_x_(static_cast<float>(1.0 / bin_x)),
       inv_y_(static_cast<float>(1.0 / bin_y)),
       inv_t_(static_cast<float>(1.0 / bin_theta)),
       nx_(static_cast<std::size_t>(std::ceil((region.max_x - region.min_x) / bin_x)) + 1),
       ny_(static_cast<std::size_t>(std::ceil((region.max_y - region.min_y) / bin_y)) + 1),
       nt_(static_cast<std::size_t>(std::ceil(2.0 * std::numbers::pi / bin_theta))) {
-  if (!(bin_x > 0 && bin_y > 0 && bin_theta > 0) || !(region.max_x >= region.min_x) ||
-      !(region.max_y >= region.min_y)) {
-    throw ConfigError("KldBins: bin sizes must be positive and the region non-empty");
-  }
   words_.resize((nx_ * ny_ * nt_ + 63) / 64);
 }
 
 std::uint64_t KldBins::bin_of(float x, float y, float theta) const noexcept {
   constexpr float kPi = 3.14159265F;
+  // floor(v) clamped to [0, n - 1], NaN to 0 (std::clamp would pass NaN through to the
+  // conversion, undefined, and in practice an index far past the bitset). The min guards
+  // against n - 1 rounding up in float.
   const auto clamp_bin = [](float v, std::size_t n) {
+    const float f = std::floor(v);
     const float hi = static_cast<float>(n - 1);
-    return static_cast<std::uint64_t>(std::clamp(std::floor(v), 0.0F, hi));
+    const float bounded = f >= 0.0F ? (f < hi ? f : hi) : 0.0F;
+    return std::min(static_cast<std::uint64_t>(bounded), std::uint64_t{n - 1});
   };
   const std::uint64_t i = clamp_bin((x - static_cast<float>(region_.min_x)) * inv_x_, nx_);
   const std::uint64_t j = clamp_bin((y - static_cast<float>(region_.min_y)) * inv_y_, ny_);

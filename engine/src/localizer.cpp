@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include "localizer_impl.hpp"
 #include "mote/core/error.hpp"
@@ -99,6 +101,35 @@ void Localizer::initialize_global() {
   s.start_fresh();
 }
 
+void Localizer::Impl::run_filter(const Pose2& odometry) {
+  // The checks before this leave nothing here that throws for a well-formed call; should it
+  // throw anyway (out of memory), the motion already applied counts as applied, so the next
+  // update does not apply it again (localizer.hpp).
+  bool moved = false;
+  try {
+    executor.run([&] {
+      if (has_odometry) timed(stats.ms.motion, [&] { predict(odometry); });
+      moved = has_odometry;
+      timed(stats.ms.sensor, [&] { weigh(); });
+      timed(stats.ms.normalize, [&] {
+        temper();
+        normalize();
+      });
+      timed(stats.ms.resample, [&] {
+        maybe_resample();
+        maybe_inject();
+      });
+      timed(stats.ms.estimate, [&] { update_estimate(); });
+    });
+  } catch (...) {
+    if (moved) {
+      last_odometry = odometry;
+      ++step;
+    }
+    throw;
+  }
+}
+
 bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   Impl& s = *impl_;
   const auto start = Clock::now();
@@ -110,23 +141,12 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
     return s.reject(UpdateOutcome::kRejectedOdometry, "odometry pose is not finite");
   if (const std::string problem = scan_geometry_problem(scan); !problem.empty())
     return s.reject(UpdateOutcome::kRejectedScan, problem);
-  if (!s.select(scan)) return s.reject(UpdateOutcome::kRejectedScan, "no valid beam in the scan");
+  if (std::string problem = s.select(scan); !problem.empty())
+    return s.reject(UpdateOutcome::kRejectedScan, std::move(problem));
   if (s.has_odometry && s.jumped(odometry)) return s.reset_odometry(odometry);
   if (s.has_odometry && !s.moved_enough(odometry)) return s.reject(UpdateOutcome::kNotMoved, "");
 
-  s.executor.run([&] {
-    if (s.has_odometry) timed(s.stats.ms.motion, [&] { s.predict(odometry); });
-    timed(s.stats.ms.sensor, [&] { s.weigh(); });
-    timed(s.stats.ms.normalize, [&] {
-      s.temper();
-      s.normalize();
-    });
-    timed(s.stats.ms.resample, [&] {
-      s.maybe_resample();
-      s.maybe_inject();
-    });
-    timed(s.stats.ms.estimate, [&] { s.update_estimate(); });
-  });
+  s.run_filter(odometry);
   s.stats.outcome = s.degenerate     ? UpdateOutcome::kUnexplainedScan
                     : s.has_odometry ? UpdateOutcome::kUpdated
                                      : UpdateOutcome::kInitialized;

@@ -16,9 +16,16 @@ bool finite_at_least(double v, double lo) { return std::isfinite(v) && v >= lo; 
 bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
 bool probability(double v) { return std::isfinite(v) && v >= 0.0 && v <= 1.0; }
 
+// Counts that size allocations (particle store, task arena): beyond these a config is more
+// likely corrupt than meant, and would exhaust memory instead of failing with a message.
+constexpr int kMaxParticles = 100'000'000;
+constexpr int kMaxThreads = 1024;
+
 void validate_particles(const LocalizerConfig& c) {
   require(c.min_particles >= 1, "min_particles", "at least 1");
   require(c.max_particles >= c.min_particles, "max_particles", "at least min_particles");
+  require(c.max_particles <= kMaxParticles, "max_particles",
+          "at most " + std::to_string(kMaxParticles) + " particles");
   require(finite_positive(c.pf_err) && c.pf_err < 1.0, "pf_err", "a value in (0, 1)");
   if (c.kld_z_is_quantile) {
     require(finite_positive(c.pf_z), "pf_z", "a positive normal quantile");
@@ -40,6 +47,10 @@ void validate_resampling(const LocalizerConfig& c) {
   require(
       std::isfinite(c.recovery_fit_band) && c.recovery_fit_band >= 0.0 && c.recovery_fit_band < 1.0,
       "recovery_fit_band", "a fraction in [0, 1)");
+  // Thrun table 8.3: 0 <= alpha_slow << alpha_fast. Either at 0 disables injection (amcl).
+  require(c.recovery_alpha_slow == 0.0 || c.recovery_alpha_fast == 0.0 ||
+              c.recovery_alpha_slow < c.recovery_alpha_fast,
+          "recovery_alpha_slow", "a rate below recovery_alpha_fast (Thrun table 8.3)");
   require(finite_at_least(c.update_min_d, 0.0), "update_min_d", "a distance >= 0");
   require(finite_at_least(c.update_min_a, 0.0), "update_min_a", "an angle >= 0");
   require(finite_positive(c.odom_jump_max_d), "odom_jump_max_d", "a positive distance in metres");
@@ -93,7 +104,8 @@ void LocalizerConfig::validate() const {
   validate_resampling(*this);
   validate_motion(*this);
   validate_sensor(*this);
-  require(threads >= 0, "threads", "a thread count >= 0 (0 = every core)");
+  require(threads >= 0 && threads <= kMaxThreads, "threads",
+          "a thread count in [0, " + std::to_string(kMaxThreads) + "] (0 = every core)");
   require(grain >= 1, "grain", "at least 1 particle per task");
 }
 

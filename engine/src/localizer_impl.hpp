@@ -36,10 +36,12 @@ struct Localizer::Impl {
 
   // Steps of update(), in order (localizer_steps.cpp).
   bool reject(UpdateOutcome outcome, std::string reason);
-  bool select(const LaserScan& scan);
+  // Selects the beams; returns why they cannot be weighed, or empty when they can.
+  [[nodiscard]] std::string select(const LaserScan& scan);
   [[nodiscard]] bool moved_enough(const Pose2& odometry) const;
   [[nodiscard]] bool jumped(const Pose2& odometry) const;
   bool reset_odometry(const Pose2& odometry);
+  void run_filter(const Pose2& odometry);  // motion .. estimate, in the executor
   void predict(const Pose2& odometry);
   void weigh();
   void temper();

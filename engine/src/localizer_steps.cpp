@@ -1,6 +1,7 @@
 // The steps of one Localizer update (design.md section 2), each a call into a kernel.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "localizer_impl.hpp"
@@ -93,10 +94,21 @@ bool Localizer::Impl::reject(UpdateOutcome outcome, std::string reason) {
   return false;
 }
 
-bool Localizer::Impl::select(const LaserScan& scan) {
+std::string Localizer::Impl::select(const LaserScan& scan) {
   select_beams(scan, selection, beams);
   stats.beams = beams.size();
-  return !beams.empty();
+  if (beams.empty()) return "no valid beam in the scan";
+  // What the ray cast would refuse (ray_setup.cpp) is refused here, before motion has moved the
+  // particles: update() must not throw half-way.
+  if (!std::ranges::all_of(beams.angle, [](float a) { return std::isfinite(a); })) {
+    return "scan beam angles (angle_min + i * angle_increment) overflow float";
+  }
+  if (config.laser_model_type == LaserModel::kBeam &&
+      !(beams.range_max > 0.0F && std::isfinite(beams.range_max))) {
+    return "scan range_max " + std::to_string(beams.range_max) +
+           " m: the beam model needs a positive, finite maximum range (or set laser_max_range)";
+  }
+  return "";
 }
 
 bool Localizer::Impl::moved_enough(const Pose2& odometry) const {

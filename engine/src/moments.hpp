@@ -19,12 +19,13 @@ struct FirstMoments {
   // Adds one particle given the cosine and sine of its heading.
   void add(double w, double x, double y, double cos_theta, double sin_theta, double theta) {
     if (count == 0) first = {x, y, theta};
+    ++count;
+    if (!(w > 0.0)) return;  // no weight, no contribution: 0 * NaN would be NaN
     s[0] += w;
     s[1] += w * x;
     s[2] += w * y;
     s[3] += w * cos_theta;
     s[4] += w * sin_theta;
-    ++count;
   }
   friend FirstMoments operator+(FirstMoments a, const FirstMoments& b) {
     if (a.count == 0) a.first = b.first;
@@ -55,6 +56,7 @@ struct SecondMoments {
   std::array<double, 6> s{};
 
   void add(double w, const Pose2& mean, double x, double y, double theta) {
+    if (!(w > 0.0)) return;  // as FirstMoments::add
     const double r[3] = {x - mean.x, y - mean.y, heading_residual(theta, mean.theta)};
     s[0] += w * r[0] * r[0];
     s[1] += w * r[0] * r[1];

@@ -1,6 +1,5 @@
 // The per-beam formulas of Thrun et al., Probabilistic Robotics, chapter 6.
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include "mote/engine/sensor_model.hpp"
@@ -28,11 +27,13 @@ double gaussian_density(double d, double sigma) noexcept {
 
 double beam_log_likelihood(double z, double z_expected, double range_max,
                            const MixtureParams& p) noexcept {
-  if (z >= range_max) {
-    // Only p_max is non-zero at z = z_max (p_hit and p_rand live on [0, z_max)).
-    return p.z_max > 0.0 ? std::log(p.z_max) : -std::numeric_limits<double>::infinity();
-  }
-  double sum = p.z_rand / range_max;  // eq. 6.11
+  // A reading at or beyond z_max is a max-range reading, table 6.1 at z = z_max: p_max is 1
+  // there (eq. 6.10) and p_rand 0 (eq. 6.11, uniform on [0, z_max)), but p_hit (eq. 6.4, on
+  // [0, z_max]) and p_short (eq. 6.7, on [0, z*]) are still evaluated, so a particle expecting a
+  // wall well short of z_max is penalized for a "no return" (as in amcl's beam model).
+  const bool max_range = z >= range_max;
+  if (max_range) z = range_max;
+  double sum = max_range ? p.z_max : p.z_rand / range_max;  // eqs. 6.10, 6.11
   if (z >= 0.0) {
     sum += p.z_hit * hit_normalizer(z_expected, range_max, p.sigma_hit) *
            gaussian_density(z - z_expected, p.sigma_hit);  // eqs. 6.4-6.6

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -52,6 +53,13 @@ float relative_weight(float logw, float max_logw) {
   return fast_exp(logw == logw ? logw - max_logw : -std::numeric_limits<float>::infinity());
 }
 
+// v where keep, else +0.0, through a bit mask: a ?: on doubles keeps GCC 12 from vectorizing
+// the moment loops.
+double masked(double v, bool keep) {
+  const std::uint64_t mask = keep ? ~std::uint64_t{0} : std::uint64_t{0};
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) & mask);
+}
+
 // Per-block sums in kLanes independent accumulators (lane j takes particles begin + j,
 // begin + j + kLanes, ...), added up in lane order at the end: a fixed order, so the same for any
 // thread count, and one the compiler can vectorize (a single running sum cannot be reordered).
@@ -87,13 +95,16 @@ FirstMoments first_moments(const ConstParticleView& p, const float* w, std::size
   const float* y = p.y + begin;
   const float* wb = w + begin;
   FirstMoments m;
+  // A particle without weight adds nothing, whatever its pose: 0 * NaN would be NaN (a
+  // non-finite pose carries weight 0 after the sensor update). Selects, so the loop vectorizes.
   m.s = lane_sums<5>(count, [&](std::size_t k, double(&acc)[5][kLanes], std::size_t j) {
     const double wk = wb[k];
+    const bool weighed = wk > 0.0;
     acc[0][j] += wk;
-    acc[1][j] += wk * x[k];
-    acc[2][j] += wk * y[k];
-    acc[3][j] += wk * cos_t[k];
-    acc[4][j] += wk * sin_t[k];
+    acc[1][j] += masked(wk * x[k], weighed);
+    acc[2][j] += masked(wk * y[k], weighed);
+    acc[3][j] += masked(wk * cos_t[k], weighed);
+    acc[4][j] += masked(wk * sin_t[k], weighed);
   });
   m.count = count;
   if (count > 0) m.first = p.pose(begin);
@@ -110,9 +121,10 @@ SecondMoments second_moments(const ConstParticleView& p, const float* w, const P
   SecondMoments m;
   m.s = lane_sums<6>(end - begin, [&](std::size_t k, double(&acc)[6][kLanes], std::size_t j) {
     const double wk = wb[k];
-    const double dx = x[k] - mean.x;
-    const double dy = y[k] - mean.y;
-    const double dt = detail::heading_residual(theta[k], mean.theta);
+    const bool weighed = wk > 0.0;  // as in first_moments: no NaN from an unweighted pose
+    const double dx = masked(x[k] - mean.x, weighed);
+    const double dy = masked(y[k] - mean.y, weighed);
+    const double dt = masked(detail::heading_residual(theta[k], mean.theta), weighed);
     acc[0][j] += wk * dx * dx;
     acc[1][j] += wk * dx * dy;
     acc[2][j] += wk * dx * dt;

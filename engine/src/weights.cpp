@@ -36,7 +36,6 @@ namespace detail {
 NormalizeResult normalize_log_weights(float* logw, std::size_t n, std::size_t grain) {
   NormalizeResult r;
   if (n == 0) return r;
-  const double log_n = std::log(static_cast<double>(n));
   const float max_logw = max_log_weight(logw, n, grain);
   if (!std::isfinite(max_logw)) {  // all -inf / NaN, or a +inf weight: no usable information
     fill_uniform(logw, n, grain);
@@ -58,7 +57,7 @@ NormalizeResult normalize_log_weights(float* logw, std::size_t n, std::size_t gr
   });
   r.status = WeightStatus::kOk;
   r.log_total = log_total;
-  r.log_mean_likelihood = log_total - log_n;
+  r.log_mean_likelihood = log_total;  // see weights.hpp: w_avg when the priors summed to 1
   // 1 / sum of (w_i / total)^2 (Thrun section 4.3.4), from the same pass as the total.
   r.effective_sample_size = total * total / sums.w_squared;
   return r;

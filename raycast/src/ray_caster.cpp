@@ -7,6 +7,7 @@
 
 #include "embree_device.hpp"
 #include "embree_packets.hpp"
+#include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
 #include "ray_setup.hpp"
 #include "wall_segments.hpp"
@@ -49,6 +50,11 @@ void add_walls(RTCScene scene, const std::vector<detail::WallSegment>& walls) {
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * walls.size()));
   auto* triangles = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), walls.size()));
+  if (vertices == nullptr || triangles == nullptr) {
+    rtcReleaseGeometry(geometry);
+    detail::check_embree("allocating the wall triangles");
+    throw Error("Embree: allocating the wall triangles failed");
+  }
   // The top edge falls from kWallTop to kFarVertexZ and crosses z = 0 at the fraction
   // kWallTop / (kWallTop - kFarVertexZ) of the way: the far vertex sits at `reach` times the
   // segment's length from its start.
@@ -85,6 +91,15 @@ struct RayCaster::Impl {
     const std::vector<detail::WallSegment> walls = detail::wall_segments(mask);
     wall_count = walls.size();
     scene = rtcNewScene(detail::embree_device());
+    detail::check_embree("creating the wall scene");
+    try {
+      build(walls);
+    } catch (...) {
+      rtcReleaseScene(scene);  // the destructor does not run for a throwing constructor
+      throw;
+    }
+  }
+  void build(const std::vector<detail::WallSegment>& walls) {
     // No RTC_SCENE_FLAG_ROBUST: it cost 10-28% per ray, and it was only needed while each wall
     // was a quad whose two triangles met in the middle of the wall (see add_walls).
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
@@ -118,6 +133,7 @@ struct RayCaster::Impl {
       }
     }
     query.flush();
+    detail::check_embree_thread("casting rays");
   }
 };
 
@@ -153,6 +169,7 @@ float RayCaster::cast_one(Point2 origin, double angle, float max_range) const {
   float range = max_range;
   detail::Single1 query(impl_->scene, max_range, std::span<float>(&range, 1));
   query.add(ray, 0);
+  detail::check_embree_thread("casting a ray");
   return range;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "mote/core/error.hpp"
 #include "mote/engine/localizer.hpp"
@@ -105,6 +106,57 @@ TEST_F(BadInput, ScanAllAtMaxRangeIsWeighedByTheBeamModel) {
   EXPECT_TRUE(beam.update(odom_, scan));
   EXPECT_TRUE(beam.update(compose(odom_, {0.2, 0, 0}), scan));
   EXPECT_TRUE(all_finite(beam.particles()));
+}
+
+// The particle columns, for comparing two filters bit for bit.
+std::vector<float> columns(const ConstParticleView& p) {
+  std::vector<float> out;
+  for (const float* c : {p.x, p.y, p.theta, p.logw}) out.insert(out.end(), c, c + p.size());
+  return out;
+}
+
+TEST_F(BadInput, BeamModelScanWithoutAPositiveRangeMaxLeavesTheFilterAsItWas) {
+  // Such a scan cannot be ray-cast; it must be refused before motion moves the particles, or
+  // the next update applies the same motion again (update() must not half-run).
+  LocalizerConfig c = small_config();
+  c.laser_model_type = LaserModel::kBeam;
+  c.laser_max_range = -1.0;  // the scan's own range_max
+  Localizer fed(map_, c);
+  Localizer fresh(map_, c);
+  const LaserScan first = sim_.scan_at(truth_);  // the simulator's noise moves on per scan
+  for (Localizer* f : {&fed, &fresh}) {
+    f->initialize(truth_, Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
+    ASSERT_TRUE(f->update(odom_, first));
+  }
+  const Pose2 odom1 = compose(odom_, {0.2, 0.0, 0.0});
+  const Pose2 truth1 = compose(truth_, {0.2, 0.0, 0.0});
+  for (const float bad_max : {0.0F, -1.0F, std::numeric_limits<float>::infinity()}) {
+    LaserScan bad = sim_.scan_at(truth1);
+    bad.range_max = bad_max;
+    try {
+      EXPECT_FALSE(fed.update(odom1, bad)) << "range_max " << bad_max;
+      EXPECT_EQ(fed.last_update().outcome, UpdateOutcome::kRejectedScan);
+      EXPECT_FALSE(fed.last_update().reason.empty());
+    } catch (const Error& e) {
+      ADD_FAILURE() << "range_max " << bad_max << " threw: " << e.what();
+    }
+  }
+  // Beam angles that overflow float are refused up front too.
+  LaserScan huge = sim_.scan_at(truth1);
+  huge.angle_min = 3e38F;
+  huge.angle_increment = 3e38F;
+  try {
+    EXPECT_FALSE(fed.update(odom1, huge));
+    EXPECT_EQ(fed.last_update().outcome, UpdateOutcome::kRejectedScan);
+  } catch (const Error& e) {
+    ADD_FAILURE() << "overflowing beam angles threw: " << e.what();
+  }
+  const Pose2 odom2 = compose(odom1, {0.2, 0.0, 0.0});
+  const LaserScan good = sim_.scan_at(compose(truth1, {0.2, 0.0, 0.0}));
+  ASSERT_TRUE(fed.update(odom2, good));
+  ASSERT_TRUE(fresh.update(odom2, good));
+  EXPECT_EQ(columns(fed.particles()), columns(fresh.particles()));
+  EXPECT_EQ(fed.last_update().step, fresh.last_update().step);
 }
 
 TEST_F(BadInput, ScanWithNonFiniteGeometryIsRejected) {

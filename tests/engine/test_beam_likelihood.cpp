@@ -239,8 +239,7 @@ TEST(BeamLikelihoodBatched, AParticlesResultDoesNotDependOnItsPlaceInTheBatch) {
 
 TEST(BeamLikelihoodBatched, NonFinitePosesKeepTheScalarLoopsOutcome) {
   // A particle with a non-finite pose gets NaN expected ranges: like the scalar loop, its
-  // log-weight becomes NaN when any reading is below z_max, and only the max-range term's
-  // constant when none is.
+  // log-weight becomes NaN, max-range readings included (p_hit at z_max needs z*).
   const Case c = cases()[0];
   const std::vector<float> nan_row(3, kNaN);
   std::vector<float> logw(1, 0.0F);
@@ -250,7 +249,39 @@ TEST(BeamLikelihoodBatched, NonFinitePosesKeepTheScalarLoopsOutcome) {
   logw[0] = 0.0F;
   const std::vector<float> all_max(3, c.range_max);
   add_beam_log_likelihoods(all_max, c.range_max, nan_row, {.mixture = c.mixture}, logw);
-  EXPECT_FLOAT_EQ(logw[0], static_cast<float>(3.0 * std::log(c.mixture.z_max)));
+  EXPECT_TRUE(std::isnan(logw[0]));
+}
+
+// Thrun eq. 6.12 at z = z_max, written out: z_max (p_max = 1) + z_hit p_hit(z_max) +
+// z_short p_short(z_max); p_rand is 0 there (uniform on [0, z_max)).
+double book_max_range_probability(double z_star, double z_max, const MixtureParams& p) {
+  const double s = p.sigma_hit;
+  const double mass = 0.5 * std::erfc(-(z_max - z_star) / (s * std::numbers::sqrt2)) -
+                      0.5 * std::erfc(z_star / (s * std::numbers::sqrt2));
+  const double d = (z_max - z_star) / s;
+  const double p_hit = std::exp(-0.5 * d * d) / (s * std::sqrt(2.0 * std::numbers::pi)) / mass;
+  const double l = p.lambda_short;
+  const double p_short =
+      z_max <= z_star ? l * std::exp(-l * z_max) / (1.0 - std::exp(-l * z_star)) : 0.0;
+  return p.z_max + p.z_hit * p_hit + p.z_short * p_short;
+}
+
+TEST(BeamLikelihoodBatched, MaxRangeReadingsDependOnTheExpectedRange) {
+  // A "no return" is likely for a particle whose ray reaches z_max and unlikely for one that
+  // expects a wall 2 m away; readings beyond z_max (and +inf) are max-range readings too.
+  for (const Case& c : cases()) {
+    const float r = c.range_max;
+    const std::vector<float> z_star = {2.0F, r - 0.5F, r - 0.1F, r - 0.01F, r};
+    for (const float z : {r, r + 5.0F, kInf}) {
+      const std::vector<float> batched = batched_one_beam(c, z, z_star);
+      for (std::size_t i = 0; i < z_star.size(); ++i) {
+        const double book = std::log(book_max_range_probability(z_star[i], r, c.mixture));
+        SCOPED_TRACE(testing::Message() << "z_max " << r << ", z " << z << ", z* " << z_star[i]);
+        expect_close(batched[i], book, 2e-6 * (1.0 + std::abs(book)), "log p(z_max | z*)");
+      }
+      EXPECT_GT(batched.back(), batched.front());
+    }
+  }
 }
 
 TEST(BeamLikelihoodBatched, ArraysOfTheWrongSizeAreAConfigError) {

@@ -149,5 +149,52 @@ TEST(ParseConfig, DefaultsKeyChoosesTheBase) {
   expect_input_error("recovery_fit_band: 1\n", "recovery_fit_band");
 }
 
+void expect_config_error(const LocalizerConfig& c, const std::string& fragment) {
+  try {
+    c.validate();
+    ADD_FAILURE() << "validate() accepted a config that should name " << fragment;
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(fragment));
+  }
+}
+
+TEST(LocalizerConfig, RecoveryNeedsASlowAverageSlowerThanTheFastOne) {
+  // Thrun table 8.3: 0 <= alpha_slow << alpha_fast; the other way round w_fast / w_slow
+  // inverts its meaning and injects particles while tracking well.
+  LocalizerConfig c;
+  c.recovery_alpha_slow = 0.1;
+  c.recovery_alpha_fast = 0.001;
+  expect_config_error(c, "LocalizerConfig.recovery_alpha_slow");
+  c.recovery_alpha_fast = 0.1;
+  expect_config_error(c, "LocalizerConfig.recovery_alpha_slow");
+  c.recovery_alpha_slow = 0.001;
+  EXPECT_NO_THROW(c.validate());
+  c.recovery_alpha_slow = 0.0;  // either 0 disables recovery (amcl): no order to check
+  c.recovery_alpha_fast = 0.0;
+  EXPECT_NO_THROW(c.validate());
+}
+
+TEST(LocalizerConfig, RefusesParticleAndThreadCountsThatWouldExhaustMemory) {
+  // The same limits as the YAML loader's, so a program that fills the config itself is
+  // refused too, instead of failing on allocation.
+  LocalizerConfig c;
+  c.max_particles = 100'000'001;
+  expect_config_error(c, "LocalizerConfig.max_particles");
+  c.max_particles = 100'000'000;
+  EXPECT_NO_THROW(c.validate());
+  c = LocalizerConfig{};
+  c.threads = 1025;
+  expect_config_error(c, "LocalizerConfig.threads");
+  c.threads = 1024;
+  EXPECT_NO_THROW(c.validate());
+}
+
+TEST(ParseConfig, SizeLimitsNameTheKeyAndLine) {
+  expect_input_error("alpha1: 0.1\nmax_particles: 1000000000\n", "line 2, key 'max_particles'");
+  expect_input_error("threads: 1000000\n", "line 1, key 'threads'");
+  expect_input_error("recovery_alpha_slow: 0.5\nrecovery_alpha_fast: 0.1\n",
+                     "key 'recovery_alpha_slow'");
+}
+
 }  // namespace
 }  // namespace mote

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
 
 #include "mote/core/error.hpp"
 #include "mote/engine/executor.hpp"
@@ -148,6 +151,39 @@ TEST(KldResample, NegligibleScatteredParticlesDoNotGrowTheSet) {
   config.max_particles = 100000;
   EXPECT_GT(kld_sample_count(store.view(), bins, config), 5000U) << "the support counts them";
   EXPECT_EQ(resample_kld_systematic(store, bins, config, 1, 2), 100U);
+}
+
+TEST(KldBins, NonFinitePosesFallInABinOfTheGrid) {
+  // A NaN coordinate takes bin 0 of its axis, +-inf the border bin: never an index past the
+  // bitset (the atomic OR in count() would write out of bounds).
+  const KldBins bins({-5.0, -5.0, 5.0, 5.0}, 0.5, 0.5, 10.0 * std::numbers::pi / 180);
+  const std::uint64_t total = bins.nx() * bins.ny() * bins.ntheta();
+  const float kNaN = std::numeric_limits<float>::quiet_NaN();
+  const float kInf = std::numeric_limits<float>::infinity();
+  for (const float x : {0.0F, kNaN, kInf, -kInf}) {
+    for (const float y : {1.0F, kNaN, kInf, -kInf}) {
+      for (const float t : {0.5F, kNaN, kInf, -kInf, 3e38F}) {
+        EXPECT_LT(bins.bin_of(x, y, t), total) << x << " " << y << " " << t;
+      }
+    }
+  }
+  EXPECT_EQ(bins.bin_of(kNaN, 1.0F, 0.5F), bins.bin_of(-5.0F, 1.0F, 0.5F));
+  EXPECT_EQ(bins.bin_of(kInf, 1.0F, 0.5F), bins.bin_of(5.0F, 1.0F, 0.5F));
+}
+
+TEST(KldBins, BadSizesAreAConfigErrorBeforeTheyAreUsed) {
+  const double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const double kInf = std::numeric_limits<double>::infinity();
+  const Bounds2 region{-5.0, -5.0, 5.0, 5.0};
+  for (const double bad : {0.0, -0.5, kNaN, kInf, 1e-300}) {
+    EXPECT_THROW(KldBins(region, bad, 0.5, 0.2), ConfigError) << bad;
+    EXPECT_THROW(KldBins(region, 0.5, bad, 0.2), ConfigError) << bad;
+    EXPECT_THROW(KldBins(region, 0.5, 0.5, bad), ConfigError) << bad;
+  }
+  EXPECT_THROW(KldBins({-kInf, 0.0, 1.0, 1.0}, 0.5, 0.5, 0.2), ConfigError);
+  EXPECT_THROW(KldBins({0.0, 0.0, 1.0, kNaN}, 0.5, 0.5, 0.2), ConfigError);
+  EXPECT_THROW(KldBins({0.0, 0.0, 1e12, 1e12}, 0.5, 0.5, 0.2), ConfigError);  // 1e26 bins
+  EXPECT_NO_THROW(KldBins(region, 0.5, 0.5, 0.2));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "engine_test_util.hpp"
@@ -102,6 +103,24 @@ TEST(FastMath, WrapsAnglesIntoTheHalfOpenInterval) {
   EXPECT_FLOAT_EQ(fast_wrap_angle(3.0F * std::numbers::pi_v<float>), std::numbers::pi_v<float>);
   EXPECT_NEAR(fast_wrap_angle(-0.5F - 4.0F * std::numbers::pi_v<float>), -0.5F, 1e-6);
   EXPECT_GT(fast_wrap_angle(-std::numbers::pi_v<float>), 0.0F);
+}
+
+TEST(FastMath, NonFiniteArgumentsGiveDefinedResults) {
+  // Each helper converts a float to int32; a NaN or huge argument must not reach that
+  // conversion (undefined behaviour, caught by -fsanitize=float-cast-overflow).
+  const float kNaN = std::numeric_limits<float>::quiet_NaN();
+  const float kInf = std::numeric_limits<float>::infinity();
+  EXPECT_TRUE(std::isnan(fast_wrap_angle(kNaN)));
+  EXPECT_EQ(fast_exp(kNaN), 0.0F);  // NaN weighs nothing, as -inf
+  EXPECT_EQ(fast_exp(-kInf), 0.0F);
+  EXPECT_EQ(fast_exp(kInf), 1.0F);  // clamped to x <= 0
+  EXPECT_TRUE(std::isnan(fast_sin_cos(kNaN).sin));
+  EXPECT_TRUE(std::isnan(fast_sin_cos(kNaN).cos));
+  for (const float a : {kInf, -kInf, 3e38F, -3e38F}) {
+    (void)fast_wrap_angle(a);  // outside |a| < 1e5 the value is unspecified, but defined
+    const SinCos sc = fast_sin_cos(a);
+    EXPECT_TRUE(std::isnan(sc.sin) || std::abs(sc.sin) <= 1.0F) << a;
+  }
 }
 
 }  // namespace

@@ -24,20 +24,24 @@ double integral_of_gaussian(double mean, double sigma, double z_max) {
   return sum * h;
 }
 
+// Table 6.1 / eq. 6.12 term by term, with the supports of eqs. 6.4-6.11 as the book states them:
+// p_hit on 0 <= z <= z_max, p_short on 0 <= z <= z*, p_max at z = z_max, p_rand on
+// 0 <= z < z_max. A reading beyond z_max is the sensor's "no return", i.e. z = z_max.
 double book_beam_probability(double z, double z_star, double z_max, const MixtureParams& p) {
+  if (z > z_max) z = z_max;
   double p_hit = 0.0;
   double p_short = 0.0;
   double p_max = 0.0;
   double p_rand = 0.0;
-  if (z >= 0.0 && z < z_max) {
+  if (z >= 0.0 && z <= z_max) {
     p_hit = gaussian(z, z_star, p.sigma_hit) / integral_of_gaussian(z_star, p.sigma_hit, z_max);
-    p_rand = 1.0 / z_max;
   }
+  if (z >= 0.0 && z < z_max) p_rand = 1.0 / z_max;
   if (z >= 0.0 && z <= z_star) {
     p_short =
         p.lambda_short * std::exp(-p.lambda_short * z) / (1.0 - std::exp(-p.lambda_short * z_star));
   }
-  if (z >= z_max) p_max = 1.0;
+  if (z == z_max) p_max = 1.0;
   return p.z_hit * p_hit + p.z_short * p_short + p.z_max * p_max + p.z_rand * p_rand;
 }
 
@@ -54,9 +58,11 @@ TEST(BeamLogLikelihood, MatchesTheBookOnHandBuiltCases) {
     double z_star;
   };
   // Centre of the range, short readings, long readings, near 0 and near z_max (where the
-  // Gaussian's normalizer differs from 1), and a max-range reading.
+  // Gaussian's normalizer differs from 1), and max-range readings: far from the expected range,
+  // near it (p_hit at z_max), at it (p_short at z_max too) and beyond z_max.
   for (const Case c : {Case{5.0, 5.0}, Case{3.0, 5.0}, Case{5.3, 5.0}, Case{0.1, 0.2},
-                       Case{9.9, 9.95}, Case{0.0, 0.05}, Case{10.0, 4.0}, Case{7.0, 2.0}}) {
+                       Case{9.9, 9.95}, Case{0.0, 0.05}, Case{10.0, 4.0}, Case{7.0, 2.0},
+                       Case{10.0, 9.9}, Case{10.0, 9.5}, Case{10.0, 10.0}, Case{12.0, 9.8}}) {
     const double expected = std::log(book_beam_probability(c.z, c.z_star, z_max, p));
     EXPECT_NEAR(beam_log_likelihood(c.z, c.z_star, z_max, p), expected, 1e-6)
         << "z = " << c.z << ", z* = " << c.z_star;
@@ -79,6 +85,19 @@ TEST(BeamLogLikelihood, IntegratesToOneOverTheRange) {
   mass *= h;
   mass += std::exp(beam_log_likelihood(z_max, 3.0, z_max, p));
   EXPECT_NEAR(mass, 1.0, 1e-4);
+}
+
+TEST(BeamLogLikelihood, MaxRangeReadingPenalizesAParticleThatExpectsANearWall) {
+  // A "no return" is likelier for a particle whose ray reaches z_max than for one expecting a
+  // wall 2 m away (Thrun eq. 6.12 at z = z_max; amcl's beam model adds p_hit and p_short there
+  // too): the difference is z_hit p_hit + z_short p_short of the far particle.
+  const MixtureParams p;  // amcl's defaults
+  const double z_max = 10.0;
+  const double far = beam_log_likelihood(z_max, z_max, z_max, p);
+  const double near_wall = beam_log_likelihood(z_max, 2.0, z_max, p);
+  EXPECT_NEAR(near_wall, std::log(p.z_max), 1e-9);  // p_hit(z_max; 2 m) is 1e-174
+  EXPECT_GT(far - near_wall, 1.0);
+  EXPECT_NEAR(far, std::log(book_beam_probability(z_max, z_max, z_max, p)), 1e-6);
 }
 
 TEST(BeamLogLikelihood, StaysFiniteForASensorTouchingAWall) {

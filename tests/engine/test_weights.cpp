@@ -27,13 +27,36 @@ TEST(Normalize, GivesLogSumExpEssAndMeanLikelihood) {
   const NormalizeResult r = normalize(p);
   ASSERT_TRUE(r.ok());
   EXPECT_NEAR(r.log_total, 1000.0 + std::log(sum), 1e-6);
-  EXPECT_NEAR(r.log_mean_likelihood, 1000.0 + std::log(sum / 4.0), 1e-6);
+  EXPECT_EQ(r.log_mean_likelihood, r.log_total);
   EXPECT_NEAR(r.effective_sample_size, 1.0 / sum_sq, 1e-5);
   EXPECT_NEAR(r.effective_sample_size, 1.0 / 0.3, 1e-3);  // 1 / (0.01 + 0.04 + 0.09 + 0.16)
   for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_NEAR(std::exp(p.logw[i]), std::exp(stored[i] - 1000.0) / sum, 1e-6);
   }
   EXPECT_NEAR(effective_sample_size(p), 1.0 / sum_sq, 1e-5);
+}
+
+TEST(Normalize, MeanLikelihoodIsThePriorWeightedMean) {
+  // Thrun table 8.3, line 8 with normalized prior weights w_prev: logw = log w_prev + log p(z|x),
+  // and w_avg = sum_i w_prev,i p(z | x_i) (1/N sum p(z | x_i) for uniform priors).
+  const double prior[] = {0.1, 0.2, 0.3, 0.4};
+  const double likelihood[] = {2e-3, 5e-4, 1e-3, 4e-3};
+  ParticleStore store(4);
+  const ParticleView p = store.view();
+  double w_avg = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    p.logw[i] = static_cast<float>(std::log(prior[i]) + std::log(likelihood[i]));
+    w_avg += std::exp(static_cast<double>(p.logw[i]));
+  }
+  const NormalizeResult r = normalize(p);
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r.log_mean_likelihood, std::log(w_avg), 1e-6);
+  // Uniform priors, as after resampling: the plain mean of the likelihoods.
+  for (std::size_t i = 0; i < 4; ++i) {
+    p.logw[i] = static_cast<float>(-std::log(4.0) + std::log(likelihood[i]));
+  }
+  const double mean = (2e-3 + 5e-4 + 1e-3 + 4e-3) / 4.0;
+  EXPECT_NEAR(normalize(p).log_mean_likelihood, std::log(mean), 1e-6);
 }
 
 TEST(Normalize, AllMinusInfinityIsReportedAndNeverNaN) {

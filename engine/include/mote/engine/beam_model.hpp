@@ -22,7 +22,9 @@ struct BeamModelParams {
 };
 
 /// Weighs particles by sum over beams of log p(z_b | z*_b(x)) (eqs. 6.4-6.11), z* ray-cast with
-/// Embree in 16-ray packets. Max-range readings count through the z_max point mass.
+/// Embree in 16-ray packets. A max-range reading is weighed at z = z_max by the whole mixture
+/// (eq. 6.12: the z_max point mass plus p_hit and p_short there), so particles that expect a
+/// wall short of z_max are penalized for it.
 class BeamModel {
  public:
   /// Builds the Embree scene of the grid.
@@ -47,9 +49,9 @@ static_assert(SensorModel<BeamModel>);
 /// every particle i, with B = ranges.size() and expected particle-major as RayCaster::cast fills
 /// it. Computes what summing beam_log_likelihood does, in float and vectorized over particles:
 /// each beam's term is within 1e-6 * (1 + |term|) of the double formula. Expected ranges outside
-/// [0, range_max] (NaN for a particle with a non-finite pose, whose logw becomes NaN unless every
-/// reading is max-range) and mixtures outside float's comfortable range (z_rand near 0) take the
-/// double formula itself. Throws ConfigError when expected.size() != logw.size() * ranges.size().
+/// [0, range_max] (NaN for a particle with a non-finite pose, whose logw becomes NaN) and mixtures
+/// outside float's comfortable range (z_rand near 0) take the double formula itself. Throws
+/// ConfigError when expected.size() != logw.size() * ranges.size().
 void add_beam_log_likelihoods(std::span<const float> ranges, float range_max,
                               std::span<const float> expected, const BeamModelParams& params,
                               std::span<float> logw);

@@ -39,9 +39,12 @@ struct KldConfig {
 [[nodiscard]] std::size_t kld_sample_count(std::size_t k, const KldConfig& config);
 
 /// A dense bitset of (x, y, theta) histogram bins over a bounded region; particles outside the
-/// region fall in the nearest border bin. Allocation happens in the constructor only.
+/// region fall in the nearest border bin, and a NaN coordinate in bin 0 of its axis. Allocation
+/// happens in the constructor only.
 class KldBins {
  public:
+  /// Throws ConfigError unless the bin sizes are positive and finite, the region finite and
+  /// non-empty, and the grid at most 2^32 bins.
   KldBins(const Bounds2& region, double bin_x, double bin_y, double bin_theta);
 
   /// Number of distinct bins occupied by the particles (weights ignored). Deterministic: bits

@@ -9,14 +9,20 @@
 ///  - an odometry step longer than odom_jump_max_d (a driver restart, kilometres of drift):
 ///    kRejectedOdometry, taken as an odometry reset: the particles stay, later steps count from
 ///    the new odometry pose;
-///  - a scan with non-finite beam angles, a NaN range limit or a non-finite sensor pose, or
+///  - a scan with non-finite beam angles (also after conversion to float), a NaN range limit, a
+///    non-finite sensor pose, a range_max that is not positive and finite when the beam model
+///    would ray-cast to it (laser_max_range < 0 takes the scan's), or
 ///    without a valid reading (all NaN, negative, below range_min; or all at max range with the
 ///    likelihood field, which ignores max-range readings as amcl does): kRejectedScan, nothing
-///    changes. The beam model weighs all-max-range scans through its z_max term;
+///    changes. The beam model weighs all-max-range scans (eq. 6.12 at z = z_max);
 ///  - a scan no particle explains (every likelihood zero): kUnexplainedScan, weights left
 ///    uniform instead of NaN;
 ///  - a config with min_particles < 1 or other invalid values: ConfigError from the
 ///    constructor; a map without a free cell: ConfigError from initialize_global().
+///
+/// Threads: one Localizer must not be used from several threads at once (not even const
+/// members during an update()); different Localizers may run concurrently, each on its own
+/// task arena.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -112,13 +118,21 @@ class Localizer {
 
   /// One filter step from the odometry pose and the scan taken there. Returns true when the
   /// filter ran (see last_update().outcome). Throws mote::Error when called before initialize.
+  /// Every input it can refuse is refused before anything changes (outcome and reason say
+  /// why). Should it throw anyway (out of memory) after the motion step, that motion counts as
+  /// applied (it is not applied again by the next call); the weights may then hold part of the
+  /// scan, so re-initialize if that matters.
   bool update(const Pose2& odometry, const LaserScan& scan);
 
-  /// The current estimate (computed at the end of each update and after initialization).
+  /// The current estimate (computed at the end of each update and after initialization). The
+  /// reference stays valid for the Localizer's lifetime, but its contents change with the next
+  /// update() or initialize*(): copy what must outlive them.
   [[nodiscard]] const LocalizationEstimate& estimate() const noexcept;
-  /// The particles and their normalized log-weights.
+  /// The particles and their normalized log-weights. The view points into the filter's
+  /// buffers and ends at the next update() or initialize*(), which may resample into the
+  /// other buffer or reallocate: do not keep it across those calls.
   [[nodiscard]] ConstParticleView particles() const noexcept;
-  /// Statistics of the last update() call.
+  /// Statistics of the last update() call (contents change with the next update()).
   [[nodiscard]] const UpdateStats& last_update() const noexcept;
   [[nodiscard]] const LocalizerConfig& config() const noexcept;
   /// Threads the filter runs on.

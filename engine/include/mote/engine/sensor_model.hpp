@@ -48,7 +48,9 @@ struct MixtureParams {
 /// log p(z | z*) of the beam model, Thrun table 6.1 / eqs. 6.4-6.10: the mixture of
 /// p_hit (Gaussian around the expected range z*, normalized over [0, z_max]), p_short
 /// (exponential truncated at z*), p_max (point mass at z_max) and p_rand (uniform over [0, z_max)).
-/// z >= range_max is a max-range reading. Returns -inf only when every term is 0.
+/// z >= range_max is a max-range reading, evaluated at z = z_max as eq. 6.12 says: z_max plus
+/// z_hit p_hit(z_max) plus z_short p_short(z_max) (non-zero only for z* = z_max), p_rand being 0
+/// there. Returns -inf only when every term is 0, NaN for a NaN z*.
 [[nodiscard]] double beam_log_likelihood(double z, double z_expected, double range_max,
                                          const MixtureParams& p) noexcept;
 

@@ -52,9 +52,11 @@ struct NormalizeResult {
   WeightStatus status = WeightStatus::kEmpty;
   /// log of the sum of exp(logw); -inf when degenerate.
   double log_total = 0.0;
-  /// log of the mean of exp(logw) = log_total - log N: the average likelihood w_avg of
-  /// augmented MCL (Thrun table 8.3, line 8) when logw held log(w_prev * p(z | x)); -inf when
-  /// degenerate.
+  /// log of the prior-weighted mean likelihood, log sum_i w_prev,i p(z | x_i): the w_avg of
+  /// augmented MCL (Thrun table 8.3, line 8), provided logw held log w_prev + log p(z | x) with
+  /// sum w_prev = 1 (as after normalize, resample_systematic or initialize_*). It is then equal to
+  /// log_total; with uniform priors 1/N it is log of the plain mean (1/N) sum_i p(z | x_i). For
+  /// unnormalized priors it is off by log sum w_prev. -inf when degenerate.
   double log_mean_likelihood = 0.0;
   /// Effective sample size 1 / sum(w_i^2) of the normalized weights, in [1, N]; N when degenerate.
   double effective_sample_size = 0.0;
