@@ -111,6 +111,28 @@ TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
   return out;
 }
 
+std::optional<std::size_t> recovery_updates(std::span<const StampedPose> estimate,
+                                            std::span<const StampedPose> sorted_reference,
+                                            double kidnap_stamp, double within_m, std::size_t hold,
+                                            double tolerance) {
+  std::size_t after = 0;      // estimates at or after the kidnapping so far
+  std::size_t run_start = 0;  // index (among those) of the current run's first estimate
+  std::size_t run = 0;        // matched estimates within the bound in the current run
+  for (const StampedPose& e : estimate) {
+    if (e.stamp < kidnap_stamp) continue;
+    const std::size_t index = after++;
+    const auto ref = match_reference(sorted_reference, e.stamp, tolerance);
+    if (!ref) continue;
+    if (std::hypot(e.pose.x - ref->pose.x, e.pose.y - ref->pose.y) > within_m) {
+      run = 0;
+      continue;
+    }
+    if (run++ == 0) run_start = index;
+    if (run >= hold) return run_start;
+  }
+  return std::nullopt;
+}
+
 Percentiles summarize(std::vector<double> values) {
   Percentiles out;
   if (values.empty()) return out;

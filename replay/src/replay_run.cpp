@@ -74,6 +74,18 @@ void run_frames(ReplayResult& result, Localizer& filter, ScanSource& source,
   }
 }
 
+KidnapRecovery kidnap_recovery(const ReplayResult& result, const ReplayOptions& options,
+                               const std::vector<StampedPose>& sorted_reference) {
+  KidnapRecovery k;
+  k.at = *options.kidnapped_at;
+  k.within_m = options.recovered_within_m;
+  k.hold = options.recovered_hold;
+  for (const StampedPose& e : result.trajectory) k.updates_after += e.stamp >= k.at ? 1U : 0U;
+  k.recovered_after = recovery_updates(result.trajectory, sorted_reference, k.at, k.within_m,
+                                       k.hold, options.metrics.match_tolerance_s);
+  return k;
+}
+
 }  // namespace
 
 ReplayResult run_replay(const ReplayOptions& options) {
@@ -94,6 +106,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
     MetricOptions metrics = options.metrics;
     metrics.start_stamp = result.first_stamp;
     result.errors = compare_trajectories(result.trajectory, sorted_reference, metrics);
+    if (options.kidnapped_at) result.kidnap = kidnap_recovery(result, options, sorted_reference);
   }
   return result;
 }

@@ -67,6 +67,22 @@ void write_errors(JsonWriter& json, const ReplayResult& r) {
   json.member("converged_at_s", r.errors->converged_at_s);
 }
 
+void write_kidnap(JsonWriter& json, const ReplayResult& r) {
+  if (!r.kidnap) return;
+  const KidnapRecovery& k = *r.kidnap;
+  json.key("kidnap").begin_object();
+  json.member("at", k.at).member("updates_after", std::uint64_t{k.updates_after});
+  json.member("within_m", k.within_m).member("hold", std::uint64_t{k.hold});
+  json.member("recovered", k.recovered_after.has_value());
+  json.key("recovered_after_updates");
+  if (k.recovered_after) {
+    json.value(std::uint64_t{*k.recovered_after});
+  } else {
+    json.null();
+  }
+  json.end_object();
+}
+
 std::string format_ms(const Percentiles& p) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(2) << p.mean << " mean, " << p.p50 << " p50, " << p.p99
@@ -136,6 +152,7 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   write_timing(json, f);
   write_outcomes(json, result);
   write_errors(json, result);
+  write_kidnap(json, result);
   if (options.profile) write_profile_json(json, profile_run(result));
   json.end_object();
 }
@@ -157,6 +174,14 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "ATE RMSE", str(e.ate_rmse_m, 4) + " m");
   row(out, "heading RMSE", str(e.heading_rmse_deg, 3) + " deg");
   row(out, "converged", e.converged_at_s ? "yes, at " + str(*e.converged_at_s, 1) + " s" : "no");
+  if (!result.kidnap) return;
+  const KidnapRecovery& k = *result.kidnap;
+  row(out, "kidnapped at",
+      str(k.at, 3) + " s, " + std::to_string(k.updates_after) + " updates after");
+  row(out, "recovery",
+      k.recovered_after ? "recovered after " + std::to_string(*k.recovered_after) + " updates (" +
+                              str(k.within_m, 2) + " m, held " + std::to_string(k.hold) + ")"
+                        : "not recovered");
 }
 
 void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,

@@ -11,7 +11,7 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 17> kFlags{{
+constexpr std::array<FlagSpec, 18> kFlags{{
     {"map", "MAP.yaml", "map_server map (required)"},
     {"log", "LOG", "recorded log: CARMEN .clf/.log or ROS 1 .bag (required)"},
     {"out", "DIR", "output folder, created if missing (required)"},
@@ -26,6 +26,9 @@ constexpr std::array<FlagSpec, 17> kFlags{{
     {"seed", "N", "random seed (default 42)"},
     {"init", "MODE", "global, or reference (default: reference if given, else global)"},
     {"init-pose", "X,Y,THETA", "start around this pose (m, m, rad), 0.1 m / 5 deg std"},
+    {"kidnapped-at", "STAMP",
+     "s, stamp of a kidnapping (mote kidnap prints it): with --reference, reports how many "
+     "updates after it the filter needs to be within 0.3 m of the reference for 20 updates"},
     {"lenient", "", "skip malformed log records (counted in the report) instead of failing"},
     {"quiet", "", "no summary table on stdout"},
     {"profile", "",
@@ -103,6 +106,10 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
   o.log = args.required("log");
   if (auto ref = args.text("reference")) o.reference = *ref;
   apply_init(args, o);
+  if (auto at = args.real("kidnapped-at", -1e12, 1e12)) {
+    if (o.reference.empty()) throw args.error("kidnapped-at", "needs --reference");
+    o.kidnapped_at = *at;
+  }
   o.reader.lenient = args.has("lenient");
   if (auto path = args.text("config")) {
     LoadedConfig loaded = load_config(*path);

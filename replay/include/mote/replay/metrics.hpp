@@ -45,6 +45,17 @@ struct TrajectoryErrors {
                                                     std::span<const StampedPose> reference,
                                                     const MetricOptions& options = {});
 
+/// Filter updates it took to recover from a kidnapping at `kidnap_stamp` (s): among the estimates
+/// stamped at or after it (in run order), the number that come before the first of `hold`
+/// consecutive matched estimates all within `within_m` m of the reference, i.e. how many updates
+/// the filter spent lost (0 = it never lost track). Estimates without a reference pose within
+/// `tolerance` s neither count toward nor break the run. nullopt when no such run exists (never
+/// recovered, or recovered too close to the end of the log to hold). `sorted_reference` must be
+/// sorted by stamp (sort_by_stamp).
+[[nodiscard]] std::optional<std::size_t> recovery_updates(
+    std::span<const StampedPose> estimate, std::span<const StampedPose> sorted_reference,
+    double kidnap_stamp, double within_m = 0.3, std::size_t hold = 20, double tolerance = 0.05);
+
 /// Mean and order statistics of a sample (e.g. update times, ms). All zero for an empty sample.
 struct Percentiles {
   double mean = 0.0;
