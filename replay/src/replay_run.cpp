@@ -64,6 +64,7 @@ void run_frames(ReplayResult& result, Localizer& filter, ScanSource& source,
   while (auto frame = source.next()) {
     if (result.scans == 0) {
       result.first_stamp = frame->stamp;
+      result.laser_range_max = frame->scan.range_max;
       initialize(filter, options, sorted_reference, frame->stamp);
     }
     ++result.scans;
@@ -101,6 +102,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   result.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
 
   result.reader = source->stats();
+  result.laser_range_max_source = source->range_max_source();
   result.final_particles = particle_poses(filter);
   if (!result.reference.empty()) {
     MetricOptions metrics = options.metrics;

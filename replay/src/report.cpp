@@ -1,7 +1,11 @@
 // report.json, the summary table and the output folder of a replay run.
 #include "mote/replay/report.hpp"
 
+#include <algorithm>
+#include <array>
+#include <charconv>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <ostream>
@@ -65,6 +69,31 @@ void write_errors(JsonWriter& json, const ReplayResult& r) {
   json.member("heading_rmse_deg", r.errors->heading_rmse_deg);
   json.member("max_error_m", r.errors->max_error_m);
   json.member("converged_at_s", r.errors->converged_at_s);
+}
+
+// A float as the double of its shortest decimal form (81.83F as 81.83, not 81.83000183105469).
+double decimal(float value) {
+  std::array<char, 32> buf{};
+  const auto end = std::to_chars(buf.data(), buf.data() + buf.size() - 1, value).ptr;
+  *end = '\0';
+  return std::strtod(buf.data(), nullptr);
+}
+
+// The range the sensor model uses: a positive laser_max_range only lowers the scans' own (the
+// engine's beams.cpp), so no-return readings stay no-return.
+double effective_range_max(const ReplayResult& r) {
+  const double scan = decimal(r.laser_range_max);
+  const double configured = r.config.laser_max_range;
+  if (configured <= 0.0) return scan;
+  return scan > 0.0 ? std::min(configured, scan) : configured;
+}
+
+void write_laser_range(JsonWriter& json, const ReplayResult& r) {
+  json.key("laser_max_range").begin_object();
+  json.member("m", decimal(r.laser_range_max));
+  json.member("source", r.laser_range_max_source);
+  json.member("effective_m", effective_range_max(r));
+  json.end_object();
 }
 
 void write_kidnap(JsonWriter& json, const ReplayResult& r) {
@@ -150,6 +179,7 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   json.member("particles_mean", f.particles_mean);
   json.member("wall_s", result.wall_s);
   write_timing(json, f);
+  write_laser_range(json, result);
   write_outcomes(json, result);
   write_errors(json, result);
   write_kidnap(json, result);
@@ -166,6 +196,11 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "particles (mean)", str(f.particles_mean, 0));
   row(out, "update ms", format_ms(f.update_ms));
   row(out, "particle-beams/s", str(f.particle_beams_per_s / 1e6, 1) + " M");
+  std::string range = str(result.laser_range_max, 2) + " m, " + result.laser_range_max_source;
+  if (effective_range_max(result) < decimal(result.laser_range_max)) {
+    range += "; capped at " + str(effective_range_max(result), 2) + " m by laser_max_range";
+  }
+  row(out, "laser max range", range);
   row(out, "skipped records", std::to_string(result.reader.records_skipped));
   if (options.profile) print_profile(out, profile_run(result));
   if (!result.errors) return;

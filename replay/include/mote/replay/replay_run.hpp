@@ -87,11 +87,13 @@ struct ReplayResult {
   std::array<std::size_t, kOutcomeCount> outcomes{};  ///< update() calls by UpdateOutcome
   std::string first_unusual_reason;                   ///< reason of the first non-normal outcome
   ReadStats reader;                                   ///< what the log reader skipped
-  std::vector<StampedPose> reference;                 ///< the reference trajectory (may be empty)
-  std::optional<TrajectoryErrors> errors;             ///< with a reference
-  std::optional<KidnapRecovery> kidnap;               ///< with a reference and kidnapped_at
-  std::vector<Pose2> final_particles;                 ///< the particle cloud after the last scan
-  double wall_s = 0.0;                                ///< s, wall-clock time of the whole loop
+  float laser_range_max = 0.0F;  ///< m, range_max of the first scan (the laser's no-return value)
+  std::string laser_range_max_source;      ///< where it came from (ScanSource::range_max_source)
+  std::vector<StampedPose> reference;      ///< the reference trajectory (may be empty)
+  std::optional<TrajectoryErrors> errors;  ///< with a reference
+  std::optional<KidnapRecovery> kidnap;    ///< with a reference and kidnapped_at
+  std::vector<Pose2> final_particles;      ///< the particle cloud after the last scan
+  double wall_s = 0.0;                     ///< s, wall-clock time of the whole loop
 };
 
 /// Loads the map, log and reference, runs the filter over every scan and measures the result.
