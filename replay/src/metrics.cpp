@@ -43,17 +43,32 @@ std::vector<PoseError> pose_errors(std::span<const StampedPose> estimate,
   return errors;
 }
 
-// The first index from which every error stays within the bounds, scanning from the end.
+bool within(const PoseError& e, const MetricOptions& options) {
+  return e.position_m < options.converged_m && e.heading_deg < options.converged_deg;
+}
+
+// The convergence rule of TrajectoryErrors::converged_at_s. Scanning from the end with a sliding
+// count of outliers, the last window start j holding too many fixes the earliest admissible k
+// at j + 1 (windows starting before k do not matter); k is the first estimate within the bounds
+// from there.
 std::optional<std::size_t> converged_from(const std::vector<PoseError>& errors,
                                           const MetricOptions& options) {
-  std::optional<std::size_t> from;
-  for (std::size_t k = errors.size(); k-- > 0;) {
-    const bool ok =
-        errors[k].position_m < options.converged_m && errors[k].heading_deg < options.converged_deg;
-    if (!ok) break;
-    from = k;
+  const std::size_t n = errors.size();
+  const std::size_t window = std::max<std::size_t>(options.converged_window, 1);
+  std::size_t earliest = 0;
+  std::size_t outliers = 0;  // outside the bounds in [j, min(j + window, n))
+  for (std::size_t j = n; j-- > 0;) {
+    outliers += within(errors[j], options) ? 0U : 1U;
+    if (j + window < n && !within(errors[j + window], options)) --outliers;
+    if (outliers > options.converged_outliers) {
+      earliest = j + 1;
+      break;
+    }
   }
-  return from;
+  for (std::size_t k = earliest; k < n; ++k) {
+    if (within(errors[k], options)) return k;
+  }
+  return std::nullopt;
 }
 
 }  // namespace

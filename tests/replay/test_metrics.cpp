@@ -82,23 +82,52 @@ TEST(Metrics, UnmatchedEstimatesAreSkippedAndNoMatchGivesNaN) {
 }
 
 TEST(Metrics, ConvergedAtIsFirstTimeFromWhichErrorStaysSmall) {
-  const auto ref = straight_line(30, 1.0);  // stamps 100 .. 129
+  const auto ref = straight_line(60, 1.0);  // stamps 100 .. 159
   auto est = ref;
   for (std::size_t k = 0; k < 10; ++k) est[k].pose.x += 2.0;  // lost until stamp 109
-  est[14].pose.theta += 15.0 * kDeg;                          // heading glitch at stamp 114
   est[20].pose.y += 0.49;                                     // still inside 0.5 m
   MetricOptions options;
   options.start_stamp = 100.0;
   const TrajectoryErrors e = compare_trajectories(est, ref, options);
   ASSERT_TRUE(e.converged_at_s.has_value());
-  EXPECT_DOUBLE_EQ(*e.converged_at_s, 15.0);
+  EXPECT_DOUBLE_EQ(*e.converged_at_s, 10.0);
 }
 
-TEST(Metrics, NeverConvergedWhenTheLastPoseIsOff) {
+TEST(Metrics, IsolatedOutliersDoNotResetConvergence) {
+  const auto ref = straight_line(60, 1.0);
+  auto est = ref;
+  for (std::size_t k = 0; k < 10; ++k) est[k].pose.x += 2.0;  // lost until stamp 109
+  est[14].pose.theta += 15.0 * kDeg;                          // heading glitch at 114
+  est[35].pose.x += 3.0;                                      // one bad match at 135
+  est[59].pose.y += 0.6;                                      // and at the very end
+  MetricOptions options;
+  options.start_stamp = 100.0;
+  EXPECT_DOUBLE_EQ(*compare_trajectories(est, ref, options).converged_at_s, 10.0);
+  // Two outliers within 20 updates are not isolated: 135 and 145, then 145 and 159, so the
+  // filter counts as converged after 145.
+  est[45].pose.x += 3.0;
+  EXPECT_DOUBLE_EQ(*compare_trajectories(est, ref, options).converged_at_s, 46.0);
+}
+
+TEST(Metrics, ALostStretchResetsConvergence) {
+  const auto ref = straight_line(60, 1.0);
+  auto est = ref;
+  for (std::size_t k = 0; k < 5; ++k) est[k].pose.x += 2.0;
+  for (std::size_t k = 30; k < 38; ++k) est[k].pose.x += 5.0;  // lost again 130 .. 137
+  MetricOptions options;
+  options.start_stamp = 100.0;
+  EXPECT_DOUBLE_EQ(*compare_trajectories(est, ref, options).converged_at_s, 38.0);
+}
+
+TEST(Metrics, NeverConvergedWhenTheLastPosesAreOff) {
   const auto ref = straight_line(10, 1.0);
   auto est = ref;
-  est.back().pose.x += 0.6;
+  est[8].pose.x += 0.6;
+  est[9].pose.x += 0.6;
   EXPECT_FALSE(compare_trajectories(est, ref).converged_at_s.has_value());
+  auto lost = ref;
+  for (StampedPose& p : lost) p.pose.y += 1.0;
+  EXPECT_FALSE(compare_trajectories(lost, ref).converged_at_s.has_value());
 }
 
 // Recovery after a kidnapping at stamp 110 (index 10 of a 1 s trajectory starting at 100).
