@@ -4,12 +4,17 @@
 /// line, processed in file order because logged timestamps are not always monotonic.
 
 #include <cstddef>
+#include <deque>
+#include <exception>
 #include <fstream>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mote/core/error.hpp"
+#include "mote/replay/no_return.hpp"
 #include "mote/replay/scan_source.hpp"
 #include "text_fields.hpp"
 
@@ -17,6 +22,12 @@ namespace mote::replay {
 namespace {
 
 constexpr long long kMaxBeams = 1 << 16;
+
+/// The no-return value of FLASER/RLASER scans is inferred from the first kInferScans moving
+/// scans (NoReturnEstimator), which are held back until then: one pass over the file, at most
+/// kMaxHeldFrames frames in memory (a robot standing still adds frames but not counted scans).
+constexpr std::size_t kInferScans = 200;
+constexpr std::size_t kMaxHeldFrames = 2000;
 
 /// Reads `count` ranges, m; CARMEN writes finite non-negative values.
 void read_ranges(detail::LineFields& f, long long count, LaserScan& scan) {
@@ -49,9 +60,70 @@ class CarmenSource final : public ScanSource {
     if (!in_ || std::filesystem::is_directory(path)) {
       throw InputError(file_, "", "cannot open file");
     }
+    if (options_.carmen_max_range) {
+      flaser_max_ = *options_.carmen_max_range;
+      flaser_source_ = "given (ReaderOptions::carmen_max_range, mote's --laser-max-range)";
+      window_done_ = true;
+    }
   }
 
   std::optional<ScanFrame> next() override {
+    if (!window_done_) fill_window();
+    if (!window_.empty()) {
+      ScanFrame frame = std::move(window_.front());
+      window_.pop_front();
+      return frame;
+    }
+    if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
+    return read_frame();
+  }
+
+  [[nodiscard]] ReadStats stats() const override { return stats_; }
+
+  [[nodiscard]] std::string range_max_source() const override {
+    if (saw_flaser_ && saw_robotlaser_) {
+      return flaser_source_ + " (FLASER/RLASER; ROBOTLASER1 lines record their own)";
+    }
+    if (saw_flaser_) return flaser_source_;
+    return "recorded in the log (ROBOTLASER1 max_range)";
+  }
+
+ private:
+  /// Reads frames until kInferScans FLASER/RLASER scans are counted (or the end, an error, or
+  /// kMaxHeldFrames), then settles their range_max. An error is kept and thrown after the frames
+  /// read before it, so callers see the same sequence as without the read-ahead.
+  void fill_window() {
+    window_done_ = true;
+    std::vector<std::size_t> flaser;  // indices in window_ of FLASER/RLASER frames
+    try {
+      while (window_.size() < kMaxHeldFrames && estimator_.scans() < kInferScans) {
+        auto frame = read_frame();
+        if (!frame) break;
+        if (last_was_flaser_) {
+          estimator_.add(frame->scan.ranges, frame->odometry);
+          flaser.push_back(window_.size());
+        }
+        window_.push_back(std::move(*frame));
+      }
+    } catch (const InputError&) {
+      pending_ = std::current_exception();
+    }
+    settle_flaser_max();
+    for (const std::size_t k : flaser) window_[k].scan.range_max = *flaser_max_;
+  }
+
+  void settle_flaser_max() {
+    const NoReturnRange found = estimator_.estimate();
+    if (found.range_max > 0.0F) {
+      flaser_max_ = found.range_max;
+      flaser_source_ = found.describe();
+    } else {
+      flaser_max_ = kCarmenDefaultMaxRange;
+      flaser_source_ = "CARMEN default (no FLASER/RLASER reading in the first frames)";
+    }
+  }
+
+  std::optional<ScanFrame> read_frame() {
     std::string line;
     while (std::getline(in_, line)) {
       ++line_no_;
@@ -69,9 +141,6 @@ class CarmenSource final : public ScanSource {
     return std::nullopt;
   }
 
-  [[nodiscard]] ReadStats stats() const override { return stats_; }
-
- private:
   /// One line: a frame for scan messages, nullopt for everything else.
   std::optional<ScanFrame> parse(detail::LineFields& f) {
     if (f.empty() || f.peek(0).front() == '#') return std::nullopt;
@@ -79,6 +148,7 @@ class CarmenSource final : public ScanSource {
     if (!is_message_type(type)) {
       f.fail("expected a message type such as FLASER or ODOM, found '" + std::string(type) + "'");
     }
+    last_was_flaser_ = type == "FLASER" || type == "RLASER";
     if (type == "FLASER") return count(parse_flaser(f, front_offset_));
     if (type == "RLASER") return count(parse_flaser(f, rear_offset_));
     if (type == "ROBOTLASER1") return count(parse_robotlaser(f));
@@ -137,7 +207,8 @@ class CarmenSource final : public ScanSource {
     const double steps = static_cast<double>(n - n % 2);
     frame.scan.angle_min = static_cast<float>(-std::numbers::pi / 2.0);
     frame.scan.angle_increment = static_cast<float>(std::numbers::pi / steps);
-    frame.scan.range_max = options_.carmen_max_range;
+    frame.scan.range_max = flaser_max_.value_or(0.0F);  // settled after the first scans
+    saw_flaser_ = true;
     frame.scan.sensor_pose = mount;
     frame.scan.stamp = frame.stamp;
     return frame;
@@ -154,6 +225,7 @@ class CarmenSource final : public ScanSource {
     (void)f.finite("field_of_view");
     frame.scan.angle_increment = static_cast<float>(f.finite("angular_resolution"));
     frame.scan.range_max = static_cast<float>(f.finite("max_range"));
+    saw_robotlaser_ = true;
     (void)f.finite("accuracy");
     (void)f.integer("remission_mode", 0, 1000);
     const long long n = f.integer("beam count", 1, kMaxBeams);
@@ -202,6 +274,17 @@ class CarmenSource final : public ScanSource {
   std::size_t frames_ = 0;
   Pose2 front_offset_;
   Pose2 rear_offset_{0.0, 0.0, std::numbers::pi};
+
+  // FLASER/RLASER range_max: given, or inferred from the first scans (fill_window).
+  std::optional<float> flaser_max_;
+  std::string flaser_source_;
+  NoReturnEstimator estimator_;
+  bool window_done_ = false;
+  std::deque<ScanFrame> window_;
+  std::exception_ptr pending_;
+  bool last_was_flaser_ = false;
+  bool saw_flaser_ = false;
+  bool saw_robotlaser_ = false;
 };
 
 }  // namespace

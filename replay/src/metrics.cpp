@@ -43,17 +43,32 @@ std::vector<PoseError> pose_errors(std::span<const StampedPose> estimate,
   return errors;
 }
 
-// The first index from which every error stays within the bounds, scanning from the end.
+bool within(const PoseError& e, const MetricOptions& options) {
+  return e.position_m < options.converged_m && e.heading_deg < options.converged_deg;
+}
+
+// The convergence rule of TrajectoryErrors::converged_at_s. Scanning from the end with a sliding
+// count of outliers, the last window start j holding too many fixes the earliest admissible k
+// at j + 1 (windows starting before k do not matter); k is the first estimate within the bounds
+// from there.
 std::optional<std::size_t> converged_from(const std::vector<PoseError>& errors,
                                           const MetricOptions& options) {
-  std::optional<std::size_t> from;
-  for (std::size_t k = errors.size(); k-- > 0;) {
-    const bool ok =
-        errors[k].position_m < options.converged_m && errors[k].heading_deg < options.converged_deg;
-    if (!ok) break;
-    from = k;
+  const std::size_t n = errors.size();
+  const std::size_t window = std::max<std::size_t>(options.converged_window, 1);
+  std::size_t earliest = 0;
+  std::size_t outliers = 0;  // outside the bounds in [j, min(j + window, n))
+  for (std::size_t j = n; j-- > 0;) {
+    outliers += within(errors[j], options) ? 0U : 1U;
+    if (j + window < n && !within(errors[j + window], options)) --outliers;
+    if (outliers > options.converged_outliers) {
+      earliest = j + 1;
+      break;
+    }
   }
-  return from;
+  for (std::size_t k = earliest; k < n; ++k) {
+    if (within(errors[k], options)) return k;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -109,6 +124,28 @@ TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
     out.converged_at_s = errors[*from].stamp - options.start_stamp;
   }
   return out;
+}
+
+std::optional<std::size_t> recovery_updates(std::span<const StampedPose> estimate,
+                                            std::span<const StampedPose> sorted_reference,
+                                            double kidnap_stamp, double within_m, std::size_t hold,
+                                            double tolerance) {
+  std::size_t after = 0;      // estimates at or after the kidnapping so far
+  std::size_t run_start = 0;  // index (among those) of the current run's first estimate
+  std::size_t run = 0;        // matched estimates within the bound in the current run
+  for (const StampedPose& e : estimate) {
+    if (e.stamp < kidnap_stamp) continue;
+    const std::size_t index = after++;
+    const auto ref = match_reference(sorted_reference, e.stamp, tolerance);
+    if (!ref) continue;
+    if (std::hypot(e.pose.x - ref->pose.x, e.pose.y - ref->pose.y) > within_m) {
+      run = 0;
+      continue;
+    }
+    if (run++ == 0) run_start = index;
+    if (run >= hold) return run_start;
+  }
+  return std::nullopt;
 }
 
 Percentiles summarize(std::vector<double> values) {

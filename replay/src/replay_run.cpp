@@ -74,6 +74,7 @@ void run_frames(ReplayResult& result, Localizer& filter, ScanSource& source,
   while (auto frame = source.next()) {
     if (result.scans == 0) {
       result.first_stamp = frame->stamp;
+      result.laser_range_max = frame->scan.range_max;
       initialize(filter, options, sorted_reference, frame->stamp);
     }
     ++result.scans;
@@ -82,6 +83,18 @@ void run_frames(ReplayResult& result, Localizer& filter, ScanSource& source,
     if (filter.last_update().ran()) record_update(result, filter, frame->stamp);
     if (options.progress) options.progress(result.scans);
   }
+}
+
+KidnapRecovery kidnap_recovery(const ReplayResult& result, const ReplayOptions& options,
+                               const std::vector<StampedPose>& sorted_reference) {
+  KidnapRecovery k;
+  k.at = *options.kidnapped_at;
+  k.within_m = options.recovered_within_m;
+  k.hold = options.recovered_hold;
+  for (const StampedPose& e : result.trajectory) k.updates_after += e.stamp >= k.at ? 1U : 0U;
+  k.recovered_after = recovery_updates(result.trajectory, sorted_reference, k.at, k.within_m,
+                                       k.hold, options.metrics.match_tolerance_s);
+  return k;
 }
 
 }  // namespace
@@ -99,11 +112,13 @@ ReplayResult run_replay(const ReplayOptions& options) {
   result.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
 
   result.reader = source->stats();
+  result.laser_range_max_source = source->range_max_source();
   result.final_particles = particle_poses(filter);
   if (!result.reference.empty()) {
     MetricOptions metrics = options.metrics;
     metrics.start_stamp = result.first_stamp;
     result.errors = compare_trajectories(result.trajectory, sorted_reference, metrics);
+    if (options.kidnapped_at) result.kidnap = kidnap_recovery(result, options, sorted_reference);
   }
   return result;
 }

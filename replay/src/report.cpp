@@ -2,7 +2,10 @@
 #include "mote/replay/report.hpp"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <ostream>
@@ -66,6 +69,47 @@ void write_errors(JsonWriter& json, const ReplayResult& r) {
   json.member("heading_rmse_deg", r.errors->heading_rmse_deg);
   json.member("max_error_m", r.errors->max_error_m);
   json.member("converged_at_s", r.errors->converged_at_s);
+}
+
+// A float as the double of its shortest decimal form (81.83F as 81.83, not 81.83000183105469).
+double decimal(float value) {
+  std::array<char, 32> buf{};
+  const auto end = std::to_chars(buf.data(), buf.data() + buf.size() - 1, value).ptr;
+  *end = '\0';
+  return std::strtod(buf.data(), nullptr);
+}
+
+// The range the sensor model uses: a positive laser_max_range only lowers the scans' own (the
+// engine's beams.cpp), so no-return readings stay no-return.
+double effective_range_max(const ReplayResult& r) {
+  const double scan = decimal(r.laser_range_max);
+  const double configured = r.config.laser_max_range;
+  if (configured <= 0.0) return scan;
+  return scan > 0.0 ? std::min(configured, scan) : configured;
+}
+
+void write_laser_range(JsonWriter& json, const ReplayResult& r) {
+  json.key("laser_max_range").begin_object();
+  json.member("m", decimal(r.laser_range_max));
+  json.member("source", r.laser_range_max_source);
+  json.member("effective_m", effective_range_max(r));
+  json.end_object();
+}
+
+void write_kidnap(JsonWriter& json, const ReplayResult& r) {
+  if (!r.kidnap) return;
+  const KidnapRecovery& k = *r.kidnap;
+  json.key("kidnap").begin_object();
+  json.member("at", k.at).member("updates_after", std::uint64_t{k.updates_after});
+  json.member("within_m", k.within_m).member("hold", std::uint64_t{k.hold});
+  json.member("recovered", k.recovered_after.has_value());
+  json.key("recovered_after_updates");
+  if (k.recovered_after) {
+    json.value(std::uint64_t{*k.recovered_after});
+  } else {
+    json.null();
+  }
+  json.end_object();
 }
 
 std::string format_ms(const Percentiles& p) {
@@ -167,8 +211,10 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   json.member("wall_s", result.wall_s);
   write_filter_decisions(json, result);
   write_timing(json, f);
+  write_laser_range(json, result);
   write_outcomes(json, result);
   write_errors(json, result);
+  write_kidnap(json, result);
   if (options.profile) write_profile_json(json, profile_run(result));
   json.end_object();
 }
@@ -183,6 +229,11 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "tempering", tempering_text(result));
   row(out, "update ms", format_ms(f.update_ms));
   row(out, "particle-beams/s", str(f.particle_beams_per_s / 1e6, 1) + " M");
+  std::string range = str(result.laser_range_max, 2) + " m, " + result.laser_range_max_source;
+  if (effective_range_max(result) < decimal(result.laser_range_max)) {
+    range += "; capped at " + str(effective_range_max(result), 2) + " m by laser_max_range";
+  }
+  row(out, "laser max range", range);
   row(out, "skipped records", std::to_string(result.reader.records_skipped));
   if (options.profile) print_profile(out, profile_run(result));
   if (!result.errors) return;
@@ -191,6 +242,14 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "ATE RMSE", str(e.ate_rmse_m, 4) + " m");
   row(out, "heading RMSE", str(e.heading_rmse_deg, 3) + " deg");
   row(out, "converged", e.converged_at_s ? "yes, at " + str(*e.converged_at_s, 1) + " s" : "no");
+  if (!result.kidnap) return;
+  const KidnapRecovery& k = *result.kidnap;
+  row(out, "kidnapped at",
+      str(k.at, 3) + " s, " + std::to_string(k.updates_after) + " updates after");
+  row(out, "recovery",
+      k.recovered_after ? "recovered after " + std::to_string(*k.recovered_after) + " updates (" +
+                              str(k.within_m, 2) + " m, held " + std::to_string(k.hold) + ")"
+                        : "not recovered");
 }
 
 void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,

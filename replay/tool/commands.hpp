@@ -14,6 +14,8 @@ namespace mote::tool {
 int replay_command(std::span<char* const> args);
 /// `mote simulate`: a simulated log on a map.
 int simulate_command(std::span<char* const> args);
+/// `mote kidnap`: a kidnapped-robot log spliced from a recorded log with reference poses.
+int kidnap_command(std::span<char* const> args);
 /// `mote run`: simulate on the bundled floor plan, then replay with global initialization.
 int run_command(std::span<char* const> args);
 

@@ -17,6 +17,8 @@ constexpr std::string_view kHelp =
     "  replay    run a recorded log (CARMEN .clf or ROS 1 .bag) through the filter and write\n"
     "            report.json, trajectory.tum and map.png\n"
     "  simulate  write a simulated log (CARMEN) and its reference trajectory for a map\n"
+    "  kidnap    splice a kidnapped-robot test from a log with reference poses (for\n"
+    "            mote replay --kidnapped-at)\n"
     "  run       simulate ~60 s on the bundled floor plan, replay it with global\n"
     "            initialization and print the summary (what `make run` calls)\n\n"
     "`mote COMMAND --help` lists each command's flags with units and defaults.\n";
@@ -24,6 +26,7 @@ constexpr std::string_view kHelp =
 int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "replay") return mote::tool::replay_command(rest);
   if (command == "simulate") return mote::tool::simulate_command(rest);
+  if (command == "kidnap") return mote::tool::kidnap_command(rest);
   if (command == "run") return mote::tool::run_command(rest);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kHelp;

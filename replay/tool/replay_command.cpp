@@ -11,7 +11,7 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 18> kFlags{{
+constexpr std::array<FlagSpec, 20> kFlags{{
     {"map", "MAP.yaml", "map_server map (required)"},
     {"log", "LOG", "recorded log: CARMEN .clf/.log or ROS 1 .bag (required)"},
     {"out", "DIR", "output folder, created if missing (required)"},
@@ -29,6 +29,12 @@ constexpr std::array<FlagSpec, 18> kFlags{{
     {"seed", "N", "random seed (default 42)"},
     {"init", "MODE", "global, or reference (default: reference if given, else global)"},
     {"init-pose", "X,Y,THETA", "start around this pose (m, m, rad), 0.1 m / 5 deg std"},
+    {"kidnapped-at", "STAMP",
+     "s, stamp of a kidnapping (mote kidnap prints it): with --reference, reports how many "
+     "updates after it the filter needs to be within 0.3 m of the reference for 20 updates"},
+    {"laser-max-range", "M",
+     "m, the laser's no-return reading for CARMEN FLASER logs, which do not record it, and the "
+     "config's laser_max_range (default: inferred from the log's first scans)"},
     {"lenient", "", "skip malformed log records (counted in the report) instead of failing"},
     {"quiet", "", "no summary table on stdout"},
     {"profile", "",
@@ -106,6 +112,10 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
   o.log = args.required("log");
   if (auto ref = args.text("reference")) o.reference = *ref;
   apply_init(args, o);
+  if (auto at = args.real("kidnapped-at", -1e12, 1e12)) {
+    if (o.reference.empty()) throw args.error("kidnapped-at", "needs --reference");
+    o.kidnapped_at = *at;
+  }
   o.reader.lenient = args.has("lenient");
   if (args.has("nav2-defaults")) {
     if (args.text("config")) {
@@ -120,6 +130,10 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
     o.config = loaded.config;
   }
   apply_counts(args, o.config);
+  if (auto m = args.real("laser-max-range", 0.01, 1e6)) {
+    o.reader.carmen_max_range = static_cast<float>(*m);
+    o.config.laser_max_range = *m;
+  }
   apply_model(args, o.config);
   return o;
 }

@@ -80,17 +80,23 @@ std::string last_line(const std::string& text) {
 TEST(Cli, HelpDocumentsEveryCommandAndFlag) {
   const Outcome top = mote("--help");
   EXPECT_EQ(top.status, 0);
-  for (const char* cmd : {"replay", "simulate", "run"})
+  for (const char* cmd : {"replay", "simulate", "kidnap", "run"})
     EXPECT_NE(top.out.find(cmd), std::string::npos);
   const Outcome replay = mote("replay --help");
   EXPECT_EQ(replay.status, 0);
-  for (const char* flag : {"--map", "--log", "--out", "--reference", "--config", "--model",
-                           "--particles", "--min-particles", "--max-particles", "--beams",
-                           "--threads", "--seed", "--init", "--init-pose", "--lenient"}) {
+  for (const char* flag :
+       {"--map", "--log", "--out", "--reference", "--config", "--model", "--particles",
+        "--min-particles", "--max-particles", "--beams", "--threads", "--seed", "--init",
+        "--init-pose", "--lenient", "--kidnapped-at", "--laser-max-range"}) {
     EXPECT_NE(replay.out.find(flag), std::string::npos) << flag;
   }
   EXPECT_EQ(mote("simulate --help").status, 0);
   EXPECT_EQ(mote("run --help").status, 0);
+  const Outcome kidnap = mote("kidnap --help");
+  EXPECT_EQ(kidnap.status, 0);
+  for (const char* flag : {"--log", "--reference", "--out", "--keep-first", "--keep-last"}) {
+    EXPECT_NE(kidnap.out.find(flag), std::string::npos) << flag;
+  }
 }
 
 TEST(Cli, BadUsageExitsWithTwoAndOneLine) {
@@ -140,6 +146,34 @@ TEST(Cli, SimulateThenReplayWritesTheOutputs) {
   EXPECT_TRUE(fs::exists(dir / "out" / "map.png"));
   EXPECT_TRUE(fs::exists(dir / "out" / "trajectory.tum"));
   EXPECT_EQ(report.find("nan"), std::string::npos);
+}
+
+// A simulated log spliced by mote kidnap, replayed with --kidnapped-at: the report says whether
+// and when the filter recovered, and the laser range it used (recorded by ROBOTLASER1).
+TEST(Cli, KidnapThenReplayReportsRecovery) {
+  const fs::path dir = scratch("kidnap");
+  const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
+  ASSERT_EQ(mote("simulate --map '" + map.string() + "' --out '" + dir.string() +
+                 "' --seconds 20 --seed 4")
+                .status,
+            0);
+  const Outcome k = mote("kidnap --log '" + (dir / "sim.clf").string() + "' --reference '" +
+                         (dir / "sim.gt.tum").string() + "' --out '" + (dir / "k").string() + "'");
+  ASSERT_EQ(k.status, 0) << k.err;
+  const auto at = k.out.find("splice stamp ");
+  ASSERT_NE(at, std::string::npos) << k.out;
+  const std::string stamp = k.out.substr(at + 13, k.out.find('\n', at) - at - 13);
+  const Outcome o =
+      mote("replay --map '" + map.string() + "' --log '" + (dir / "k" / "kidnap.clf").string() +
+           "' --reference '" + (dir / "k" / "kidnap.tum").string() + "' --out '" +
+           (dir / "out").string() + "' --particles 1000 --kidnapped-at " + stamp);
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.out.find("recover"), std::string::npos) << o.out;
+  const std::string report = slurp(dir / "out" / "report.json");
+  EXPECT_NE(report.find("\"recovered_after_updates\""), std::string::npos);
+  EXPECT_NE(report.find("ROBOTLASER1"), std::string::npos);
+  // Without a reference there is nothing to recover to.
+  EXPECT_EQ(mote("replay --map m.yaml --log l.clf --out d --kidnapped-at 3").status, 2);
 }
 
 // Accuracy on the Intel lab log with the configuration the project ships for it

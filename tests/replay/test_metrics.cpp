@@ -82,23 +82,91 @@ TEST(Metrics, UnmatchedEstimatesAreSkippedAndNoMatchGivesNaN) {
 }
 
 TEST(Metrics, ConvergedAtIsFirstTimeFromWhichErrorStaysSmall) {
-  const auto ref = straight_line(30, 1.0);  // stamps 100 .. 129
+  const auto ref = straight_line(60, 1.0);  // stamps 100 .. 159
   auto est = ref;
   for (std::size_t k = 0; k < 10; ++k) est[k].pose.x += 2.0;  // lost until stamp 109
-  est[14].pose.theta += 15.0 * kDeg;                          // heading glitch at stamp 114
   est[20].pose.y += 0.49;                                     // still inside 0.5 m
   MetricOptions options;
   options.start_stamp = 100.0;
   const TrajectoryErrors e = compare_trajectories(est, ref, options);
   ASSERT_TRUE(e.converged_at_s.has_value());
-  EXPECT_DOUBLE_EQ(*e.converged_at_s, 15.0);
+  EXPECT_DOUBLE_EQ(*e.converged_at_s, 10.0);
 }
 
-TEST(Metrics, NeverConvergedWhenTheLastPoseIsOff) {
+TEST(Metrics, IsolatedOutliersDoNotResetConvergence) {
+  const auto ref = straight_line(60, 1.0);
+  auto est = ref;
+  for (std::size_t k = 0; k < 10; ++k) est[k].pose.x += 2.0;  // lost until stamp 109
+  est[14].pose.theta += 15.0 * kDeg;                          // heading glitch at 114
+  est[35].pose.x += 3.0;                                      // one bad match at 135
+  est[59].pose.y += 0.6;                                      // and at the very end
+  MetricOptions options;
+  options.start_stamp = 100.0;
+  EXPECT_DOUBLE_EQ(*compare_trajectories(est, ref, options).converged_at_s, 10.0);
+  // Two outliers within 20 updates are not isolated: 135 and 145, then 145 and 159, so the
+  // filter counts as converged after 145.
+  est[45].pose.x += 3.0;
+  EXPECT_DOUBLE_EQ(*compare_trajectories(est, ref, options).converged_at_s, 46.0);
+}
+
+TEST(Metrics, ALostStretchResetsConvergence) {
+  const auto ref = straight_line(60, 1.0);
+  auto est = ref;
+  for (std::size_t k = 0; k < 5; ++k) est[k].pose.x += 2.0;
+  for (std::size_t k = 30; k < 38; ++k) est[k].pose.x += 5.0;  // lost again 130 .. 137
+  MetricOptions options;
+  options.start_stamp = 100.0;
+  EXPECT_DOUBLE_EQ(*compare_trajectories(est, ref, options).converged_at_s, 38.0);
+}
+
+TEST(Metrics, NeverConvergedWhenTheLastPosesAreOff) {
   const auto ref = straight_line(10, 1.0);
   auto est = ref;
-  est.back().pose.x += 0.6;
+  est[8].pose.x += 0.6;
+  est[9].pose.x += 0.6;
   EXPECT_FALSE(compare_trajectories(est, ref).converged_at_s.has_value());
+  auto lost = ref;
+  for (StampedPose& p : lost) p.pose.y += 1.0;
+  EXPECT_FALSE(compare_trajectories(lost, ref).converged_at_s.has_value());
+}
+
+// Recovery after a kidnapping at stamp 110 (index 10 of a 1 s trajectory starting at 100).
+std::vector<StampedPose> lost_between(std::size_t from, std::size_t to) {
+  auto est = straight_line(60, 1.0);
+  for (std::size_t k = from; k < to; ++k) est[k].pose.x += 27.0;
+  return est;
+}
+
+TEST(Metrics, RecoveryCountsUpdatesSpentLost) {
+  const auto ref = straight_line(60, 1.0);
+  // Lost for the 7 updates 110..116, back from 117 on.
+  EXPECT_EQ(recovery_updates(lost_between(10, 17), ref, 110.0), std::optional<std::size_t>(7));
+  // Never lost.
+  EXPECT_EQ(recovery_updates(ref, ref, 110.0), std::optional<std::size_t>(0));
+  // Errors before the kidnapping do not count.
+  EXPECT_EQ(recovery_updates(lost_between(0, 17), ref, 110.0), std::optional<std::size_t>(7));
+}
+
+TEST(Metrics, RecoveryNeedsTheHold) {
+  const auto ref = straight_line(60, 1.0);
+  EXPECT_FALSE(recovery_updates(lost_between(10, 60), ref, 110.0).has_value());  // never
+  // Back at 150 but only 10 updates remain: not held for 20.
+  EXPECT_FALSE(recovery_updates(lost_between(10, 50), ref, 110.0).has_value());
+  EXPECT_EQ(recovery_updates(lost_between(10, 50), ref, 110.0, 0.3, 10),
+            std::optional<std::size_t>(40));
+}
+
+TEST(Metrics, RecoveryThatLeavesAndComesBackCountsFromTheLastReturn) {
+  const auto ref = straight_line(60, 1.0);
+  auto est = lost_between(10, 15);                              // back at 115 ...
+  for (std::size_t k = 25; k < 28; ++k) est[k].pose.y += 0.31;  // ... off again 125..127
+  // The run from 115 holds only 10 updates, so the recovery is the run from 128: 18 updates.
+  EXPECT_EQ(recovery_updates(est, ref, 110.0), std::optional<std::size_t>(18));
+  // Unmatched estimates (no reference within 0.05 s) neither break a run nor count toward it.
+  est = lost_between(10, 15);
+  est[20].stamp += 0.5;
+  est[20].pose.x += 9.0;
+  EXPECT_EQ(recovery_updates(est, ref, 110.0), std::optional<std::size_t>(5));
 }
 
 TEST(Metrics, PercentilesUseNearestRank) {

@@ -18,7 +18,12 @@ struct MetricOptions {
   double match_tolerance_s = 0.05;  ///< s, largest stamp gap to the nearest reference pose
   double converged_m = 0.5;         ///< m, position error under which a pose counts as converged
   double converged_deg = 10.0;      ///< degrees, heading error bound for converged
-  double start_stamp = 0.0;         ///< s, time origin of converged_at_s (the first scan)
+  /// Matched estimates per window of the convergence rule (TrajectoryErrors::converged_at_s).
+  std::size_t converged_window = 20;
+  /// Estimates outside the bounds a window may hold and still count as converged: 1 in 20 lets
+  /// isolated outliers (one bad scan match) pass, a stretch of being lost does not.
+  std::size_t converged_outliers = 1;
+  double start_stamp = 0.0;  ///< s, time origin of converged_at_s (the first scan)
 };
 
 /// Errors of an estimated trajectory against a reference.
@@ -27,8 +32,13 @@ struct TrajectoryErrors {
   double ate_rmse_m = 0.0;        ///< m, RMS of position errors over matched poses (NaN if 0)
   double heading_rmse_deg = 0.0;  ///< degrees, RMS of wrapped heading errors (NaN if 0)
   double max_error_m = 0.0;       ///< m, largest position error
-  /// s after start_stamp of the first matched estimate from which every later matched estimate
-  /// is within both bounds; nullopt when the last one is not.
+  /// s after start_stamp of the first time from which the filter stays converged except for
+  /// isolated outliers: the first matched estimate k within both bounds such that every window
+  /// of converged_window consecutive matched estimates starting at or after k (shorter at the
+  /// end of the run) holds at most converged_outliers estimates outside them. With the defaults
+  /// (1 in 20, i.e. 95 %) a single bad pose does not reset convergence, two within 20 updates
+  /// do, and so does a lost stretch; a run whose last two matched estimates are off never
+  /// converged. nullopt when no such k exists.
   std::optional<double> converged_at_s;
 };
 
@@ -44,6 +54,17 @@ struct TrajectoryErrors {
 [[nodiscard]] TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
                                                     std::span<const StampedPose> reference,
                                                     const MetricOptions& options = {});
+
+/// Filter updates it took to recover from a kidnapping at `kidnap_stamp` (s): among the estimates
+/// stamped at or after it (in run order), the number that come before the first of `hold`
+/// consecutive matched estimates all within `within_m` m of the reference, i.e. how many updates
+/// the filter spent lost (0 = it never lost track). Estimates without a reference pose within
+/// `tolerance` s neither count toward nor break the run. nullopt when no such run exists (never
+/// recovered, or recovered too close to the end of the log to hold). `sorted_reference` must be
+/// sorted by stamp (sort_by_stamp).
+[[nodiscard]] std::optional<std::size_t> recovery_updates(
+    std::span<const StampedPose> estimate, std::span<const StampedPose> sorted_reference,
+    double kidnap_stamp, double within_m = 0.3, std::size_t hold = 20, double tolerance = 0.05);
 
 /// Mean and order statistics of a sample (e.g. update times, ms). All zero for an empty sample.
 struct Percentiles {

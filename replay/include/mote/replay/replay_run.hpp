@@ -41,6 +41,11 @@ struct ReplayOptions {
   double init_sigma_xy = 0.1;        ///< m, std. dev. of the initial cloud in x and y
   double init_sigma_theta = 0.0873;  ///< rad (5 degrees), std. dev. of the initial heading
   MetricOptions metrics;             ///< start_stamp is set to the first scan's stamp
+  /// s, stamp of a kidnapping (mote kidnap's splice): with a reference, the run measures how
+  /// many updates the filter needs to recover (recovery_updates).
+  std::optional<double> kidnapped_at;
+  double recovered_within_m = 0.3;  ///< m, position error bound of a recovered estimate
+  std::size_t recovered_hold = 20;  ///< consecutive matched updates within it that count
   /// Called after every scan with the number of scans processed so far; may be empty.
   std::function<void(std::size_t scans)> progress;
 };
@@ -58,6 +63,16 @@ struct UpdateRecord {
   std::size_t injected = 0;            ///< recovery particles
   bool resampled = false;
   OdometryAlphas alphas;  ///< odometry noise in use after the update
+};
+
+/// How a run recovered from a kidnapping (ReplayOptions::kidnapped_at).
+struct KidnapRecovery {
+  double at = 0.0;                ///< s, stamp of the kidnapping
+  std::size_t updates_after = 0;  ///< updates that ran at or after it
+  double within_m = 0.3;          ///< m, the bound used
+  std::size_t hold = 20;          ///< consecutive updates within it required
+  /// Updates spent lost before the recovered run (recovery_updates); nullopt = not recovered.
+  std::optional<std::size_t> recovered_after;
 };
 
 /// Number of UpdateOutcome values (they are counted by their integer value).
@@ -78,10 +93,13 @@ struct ReplayResult {
   std::array<std::size_t, kOutcomeCount> outcomes{};  ///< update() calls by UpdateOutcome
   std::string first_unusual_reason;                   ///< reason of the first non-normal outcome
   ReadStats reader;                                   ///< what the log reader skipped
-  std::vector<StampedPose> reference;                 ///< the reference trajectory (may be empty)
-  std::optional<TrajectoryErrors> errors;             ///< with a reference
-  std::vector<Pose2> final_particles;                 ///< the particle cloud after the last scan
-  double wall_s = 0.0;                                ///< s, wall-clock time of the whole loop
+  float laser_range_max = 0.0F;  ///< m, range_max of the first scan (the laser's no-return value)
+  std::string laser_range_max_source;      ///< where it came from (ScanSource::range_max_source)
+  std::vector<StampedPose> reference;      ///< the reference trajectory (may be empty)
+  std::optional<TrajectoryErrors> errors;  ///< with a reference
+  std::optional<KidnapRecovery> kidnap;    ///< with a reference and kidnapped_at
+  std::vector<Pose2> final_particles;      ///< the particle cloud after the last scan
+  double wall_s = 0.0;                     ///< s, wall-clock time of the whole loop
 };
 
 /// Loads the map, log and reference, runs the filter over every scan and measures the result.

@@ -30,8 +30,8 @@ struct ReadStats {
   std::string first_error;          ///< message of the first malformed record, empty if none
 };
 
-/// The FLASER/RLASER maximum range, m. CARMEN does not record it; SICK LMS lasers report 81.83 m
-/// (8183 cm, the largest code) for "no return", so readings at it count as no return.
+/// The FLASER/RLASER maximum range used when a log gives nothing to infer it from, m: SICK LMS
+/// lasers report 81.83 m (8183 cm, the largest code) for "no return".
 inline constexpr float kCarmenDefaultMaxRange = 81.83F;
 
 /// Options for every reader; each reader uses the fields that concern it.
@@ -39,8 +39,10 @@ struct ReaderOptions {
   /// Skip malformed records and count them in ReadStats instead of throwing InputError. A bag
   /// whose record framing breaks stops there; what was read before is kept.
   bool lenient = false;
-  /// CARMEN FLASER/RLASER range_max, m (ROBOTLASER1 records its own).
-  float carmen_max_range = kCarmenDefaultMaxRange;
+  /// CARMEN FLASER/RLASER range_max (the no-return reading), m; ROBOTLASER1 records its own.
+  /// nullopt: inferred from the log's first 200 moving scans (NoReturnEstimator, no_return.hpp),
+  /// which the reader holds back until then: still one pass over the file.
+  std::optional<float> carmen_max_range;
   /// ROS bag: topic of sensor_msgs/LaserScan; empty = the first connection of that type.
   std::string scan_topic;
   /// ROS bag: topic of nav_msgs/Odometry; empty = the first connection of that type, or, when
@@ -60,6 +62,11 @@ class ScanSource {
   [[nodiscard]] virtual std::optional<ScanFrame> next() = 0;
   /// Counts so far.
   [[nodiscard]] virtual ReadStats stats() const = 0;
+  /// Where the frames' scan.range_max comes from (recorded, given or inferred, and how), for
+  /// reports. Meaningful once next() has returned a frame.
+  [[nodiscard]] virtual std::string range_max_source() const {
+    return "recorded in the log's scan messages";
+  }
 };
 
 /// Opens a CARMEN log (.clf, .log). Throws InputError if the file cannot be opened.
