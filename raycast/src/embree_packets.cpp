@@ -49,6 +49,24 @@ void Packet16::add(const GridRay& ray, std::size_t index) noexcept {
 void Packet16::flush() {
   if (count_ == 0) return;
   for (int k = 0; k < 16; ++k) valid_[k] = k < count_ ? -1 : 0;
+  // Lanes past count_ hold whatever the previous packet left, or nothing at all. Embree's
+  // AVX2 build splits a 16-ray packet into 8-wide halves and asserts ray.valid() (finite
+  // origin, tnear >= 0) on lanes the mask excludes as well, so they get a copy of lane 0.
+  RTCRay16& r = query_.ray;
+  for (int k = count_; k < 16; ++k) {
+    r.org_x[k] = r.org_x[0];
+    r.org_y[k] = r.org_y[0];
+    r.org_z[k] = 0.0F;
+    r.tnear[k] = 0.0F;
+    r.dir_x[k] = r.dir_x[0];
+    r.dir_y[k] = r.dir_y[0];
+    r.dir_z[k] = 0.0F;
+    r.time[k] = 0.0F;
+    r.tfar[k] = 0.0F;
+    r.mask[k] = 0;
+    r.id[k] = static_cast<unsigned>(k);
+    r.flags[k] = 0;
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect16(valid_, scene_, &context, &query_);
