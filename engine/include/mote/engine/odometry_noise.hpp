@@ -27,9 +27,11 @@ struct OdometryNoiseConfig {
   double forgetting = 0.99;  ///< per update: the fit remembers about the last 100 updates
   /// Variance factor on the fitted noise. Spread that merely equals the odometry's error
   /// would let the particles follow the odometry a little too closely, the residuals would
-  /// shrink with it and the fit would talk itself down; twice the variance keeps every fitted
-  /// error inside the cloud's 1.4 sigma.
-  double safety = 2.0;
+  /// shrink with it and the fit would talk itself down; four times the variance (twice the
+  /// standard deviation) keeps a 2-sigma error of the odometry inside the cloud's 1 sigma.
+  /// Measured on Intel (no config, 5000 particles): factor 2 ATE 0.0618 m, 4 0.0583 m,
+  /// 8 0.0587 m, 16 0.0629 m; the beam model 0.0667 m at 2, 0.0614 m at 4.
+  double safety = 4.0;
   double alpha_min = 0.002;  ///< bounds of every fitted alpha
   double alpha_max = 1.0;
   double min_samples = 20.0;  ///< effective samples (after forgetting) before alphas() answers
