@@ -60,7 +60,11 @@ struct LocalizerConfig {
   double resample_ess_fraction = 0.5;  ///< resample only when ESS < fraction * N (1 = always)
   /// w_slow smoothing rate (Thrun table 8.3); 0 disables injection (nav2's default).
   double recovery_alpha_slow = 0.001;
-  double recovery_alpha_fast = 0.1;  ///< w_fast smoothing rate; must exceed alpha_slow
+  /// w_fast smoothing rate; must exceed alpha_slow. Thrun suggests 0.1; with the dead band
+  /// below, a faster average is safe (one bad scan moves it by 0.3 of the drop, inside the
+  /// band), and on the Intel kidnapping (mote kidnap) the filter is back within 0.3 m after
+  /// 6 updates at 0.3 against 42 at 0.1 and 13 at 0.2, with the same tracking error.
+  double recovery_alpha_fast = 0.3;
   /// Augmented MCL tracks the scan fit, the per-beam geometric mean of the likelihood-field
   /// density at the particles (UpdateStats::scan_fit), not the scan likelihood, so its
   /// injection rate means the same for any beam count, model and tempering. Injection starts
