@@ -308,6 +308,7 @@ TEST(Cli, IntelKidnappingRecoversWithin30Updates) {
                          stamp + " --quiet --out '" + (dir / "out").string() + "'");
   ASSERT_EQ(o.status, 0) << o.err;
   const std::string report = slurp(dir / "out" / "report.json");
+  ASSERT_NE(report.find("\"recovered\": true"), std::string::npos) << report;
   EXPECT_LE(json_number(report, "recovered_after_updates"), 30.0);
 }
 
