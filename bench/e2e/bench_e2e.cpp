@@ -24,7 +24,7 @@ namespace {
 constexpr int kMaxBeams = 180;
 
 LocalizerConfig config_for(const Case& c) {
-  LocalizerConfig config;
+  LocalizerConfig config = c.nav2 ? nav2_defaults() : LocalizerConfig{};
   config.laser_model_type = c.model;
   config.min_particles = config.max_particles = c.particles;
   config.threads = c.threads;
@@ -41,6 +41,7 @@ struct FilterSlot {
   LaserModel model = LaserModel::kLikelihoodField;
   int particles = 0;
   int threads = 0;
+  bool nav2 = false;
   std::unique_ptr<Localizer> filter;
   bool tracking = false;  // particles follow the drive; k is the last frame's update index
   std::uint64_t k = 0;
@@ -48,12 +49,13 @@ struct FilterSlot {
 
 void use_filter(FilterSlot& slot, const Case& c) {
   if (!slot.filter || slot.model != c.model || slot.particles != c.particles ||
-      slot.threads != c.threads) {
+      slot.threads != c.threads || slot.nav2 != c.nav2) {
     slot.filter.reset();  // free the old particle set before allocating the new one
     slot.filter = std::make_unique<Localizer>(world().map, config_for(c));
     slot.model = c.model;
     slot.particles = c.particles;
     slot.threads = c.threads;
+    slot.nav2 = c.nav2;
     slot.tracking = false;
     slot.k = 0;
   }
@@ -74,6 +76,7 @@ struct Totals {
   PhaseTimes ms;
   double particle_beams = 0.0;
   double resampled = 0.0;
+  double tempering_trials = 0.0;
   std::string failure;  // set when an update did not run the full filter
 
   void add(const UpdateStats& s) {
@@ -85,6 +88,7 @@ struct Totals {
     ms.estimate += s.ms.estimate;
     particle_beams += static_cast<double>(s.weighed) * static_cast<double>(s.beams);
     resampled += s.resampled ? 1.0 : 0.0;
+    tempering_trials += s.tempering_trials;
   }
 };
 
@@ -141,7 +145,9 @@ void set_counters(benchmark::State& state, const Case& c, const Totals& t) {
   }
   state.counters["ns_motion/p"] = t.ms.motion * per_particle;
   state.counters["ns_sensor/p"] = t.ms.sensor * per_particle;
+  // Normalization with the tempering search (its ESS trials, counted below) and the scan fit.
   state.counters["ns_normalize/p"] = t.ms.normalize * per_particle;
+  state.counters["tempering_trials"] = t.tempering_trials / iters;
   state.counters["ns_resample/p"] = t.ms.resample * per_particle;
   state.counters["ns_estimate/p"] = t.ms.estimate * per_particle;
   state.counters["bytes/p"] = bytes_per_particle(c.particles);
@@ -175,6 +181,13 @@ int main(int argc, char** argv) {
   mote::bench::register_machine_check("start");
   for (const mote::bench::Case& c : mote::bench::all_cases()) {
     benchmark::RegisterBenchmark(c.name().c_str(), mote::bench::BM_Localizer_Update, c)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  // Mote's defaults beside nav2's in one run: what the adaptive mechanisms cost.
+  for (const mote::bench::Case& c : mote::bench::nav2_baseline_cases()) {
+    const std::string name = c.name() + (c.nav2 ? "" : "/defaults:mote");
+    benchmark::RegisterBenchmark(name.c_str(), mote::bench::BM_Localizer_Update, c)
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }

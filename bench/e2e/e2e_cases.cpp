@@ -26,7 +26,7 @@ bool too_slow(const Case& c) {
 std::string Case::name() const {
   return std::string("BM_Localizer_Update/") + model_name(model) + "/" + setting_name(setting) +
          "/n:" + std::to_string(particles) + "/beams:" + std::to_string(beams) +
-         "/threads:" + std::to_string(threads);
+         "/threads:" + std::to_string(threads) + (nav2 ? "/defaults:nav2" : "");
 }
 
 std::vector<Case> all_cases() {
@@ -40,6 +40,18 @@ std::vector<Case> all_cases() {
             if (!too_slow(c)) cases.push_back(c);
           }
         }
+      }
+    }
+  }
+  return cases;
+}
+
+std::vector<Case> nav2_baseline_cases() {
+  std::vector<Case> cases;
+  for (const LaserModel model : {LaserModel::kLikelihoodField, LaserModel::kBeam}) {
+    for (const int particles : {10'000, 100'000}) {
+      for (const bool nav2 : {false, true}) {
+        cases.push_back({model, Setting::kTracking, particles, 60, 2, nav2});
       }
     }
   }

@@ -24,13 +24,21 @@ struct Case {
   int particles = 0;
   int beams = 0;
   int threads = 1;
+  /// nav2_defaults() instead of mote's (fixed tempering 1, no recovery, fixed odometry
+  /// noise): the baseline the adaptive mechanisms' cost is read against, in the same run.
+  bool nav2 = false;
 
-  /// "BM_Localizer_Update/<model>/<setting>/n:<particles>/beams:<beams>/threads:<threads>".
+  /// "BM_Localizer_Update/<model>/<setting>/n:<particles>/beams:<beams>/threads:<threads>",
+  /// with "/defaults:nav2" appended for the nav2 baseline.
   [[nodiscard]] std::string name() const;
 };
 
-/// Every case, ordered so that consecutive cases share one filter (same model, particle count
-/// and thread count): tracking then global, each over the beam counts.
+/// Every case (mote's defaults), ordered so that consecutive cases share one filter (same model,
+/// particle count and thread count): tracking then global, each over the beam counts.
 [[nodiscard]] std::vector<Case> all_cases();
+
+/// The nav2-defaults twins of the tracking cases at 10k and 100k particles, 60 beams,
+/// 2 threads, for both models.
+[[nodiscard]] std::vector<Case> nav2_baseline_cases();
 
 }  // namespace mote::bench

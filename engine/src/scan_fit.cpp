@@ -13,9 +13,21 @@ ScanFit::ScanFit(const OccupancyGrid& grid, const MixtureParams& mixture, double
       mixture_(mixture),
       max_distance_(static_cast<float>(max_distance)) {}
 
-double ScanFit::operator()(const BeamSet& beams, const ConstParticleView& p) const {
+void ScanFit::build_table(float range_max) {
+  const auto log_density = [&](float d) {
+    return static_cast<float>(std::log(likelihood_field_density(d, range_max, mixture_)));
+  };
+  const std::vector<float>& d = field_.distances();
+  log_density_.resize(d.size());
+  for (std::size_t c = 0; c < d.size(); ++c) log_density_[c] = log_density(d[c]);
+  off_map_ = log_density(max_distance_);
+  table_range_max_ = range_max;
+}
+
+double ScanFit::operator()(const BeamSet& beams, const ConstParticleView& p) {
   const std::size_t n = p.size();
   if (n == 0) return 0.0;
+  if (beams.range_max != table_range_max_) build_table(beams.range_max);
   // Endpoints in the robot frame once per scan (no-return beams have none to explain).
   std::vector<Point2> ends;
   ends.reserve(beams.size());
@@ -32,22 +44,20 @@ double ScanFit::operator()(const BeamSet& beams, const ConstParticleView& p) con
   for (std::size_t i = 0; i < n; i += stride) {
     const double w = std::exp(static_cast<double>(p.logw[i]));
     if (!(w > 0.0) || !is_finite(p.pose(i))) continue;
-    weighted += w * std::exp(mean_log_density(ends, p.pose(i), beams.range_max));
+    weighted += w * std::exp(mean_log_density(ends, p.pose(i)));
     total += w;
   }
   return total > 0.0 ? weighted / total : 0.0;
 }
 
-double ScanFit::mean_log_density(const std::vector<Point2>& ends, const Pose2& pose,
-                                 double range_max) const {
+double ScanFit::mean_log_density(const std::vector<Point2>& ends, const Pose2& pose) const {
   const double c = std::cos(pose.theta);
   const double s = std::sin(pose.theta);
   double sum = 0.0;
   for (const Point2& e : ends) {
     const CellIndex cell =
         grid_.world_to_cell({pose.x + c * e.x - s * e.y, pose.y + s * e.x + c * e.y});
-    const float d = grid_.contains(cell) ? field_.at(cell) : max_distance_;
-    sum += std::log(likelihood_field_density(d, range_max, mixture_));
+    sum += grid_.contains(cell) ? log_density_[grid_.linear_index(cell)] : off_map_;
   }
   return sum / static_cast<double>(ends.size());
 }

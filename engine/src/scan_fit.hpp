@@ -32,17 +32,23 @@ class ScanFit {
 
   /// The weighted geometric-mean beam likelihood (> 0), or 0 when no beam has an endpoint
   /// (every reading at max range) or no particle has weight.
-  [[nodiscard]] double operator()(const BeamSet& beams, const ConstParticleView& particles) const;
+  /// Rebuilds its per-cell table when the scan's range_max changes (z_rand / z_max), so call
+  /// it from one thread.
+  [[nodiscard]] double operator()(const BeamSet& beams, const ConstParticleView& particles);
 
  private:
   // Mean log density of the robot-frame endpoints `ends` seen from `pose`.
-  [[nodiscard]] double mean_log_density(const std::vector<Point2>& ends, const Pose2& pose,
-                                        double range_max) const;
+  [[nodiscard]] double mean_log_density(const std::vector<Point2>& ends, const Pose2& pose) const;
+  // The log density of every cell's distance for this range_max, and of an off-map endpoint.
+  void build_table(float range_max);
 
   OccupancyGrid grid_;
   DistanceField field_;
   MixtureParams mixture_;
   float max_distance_;
+  std::vector<float> log_density_;
+  float off_map_ = 0.0F;
+  float table_range_max_ = -1.0F;
 };
 
 }  // namespace mote
