@@ -124,6 +124,7 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
   } catch (...) {
     if (moved) {
       last_odometry = odometry;
+      last_estimate = estimate.best().mean;  // no residual across the failed update
       ++step;
     }
     throw;

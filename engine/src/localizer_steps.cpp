@@ -188,8 +188,10 @@ void Localizer::Impl::normalize() {
   // at the posterior weights: injected particles that explain nothing weigh nothing there,
   // so only a set whose best hypotheses fit badly lowers it (at the prior weights, each
   // injection lowered the fit and called for more injection).
+  // A scan without an endpoint (every beam a no-return, the beam model keeps them) says
+  // nothing about how well the map fits: the averages keep their values.
   stats.scan_fit = fit(beams, std::as_const(store).view());
-  recovery.update(std::log(stats.scan_fit));
+  if (stats.scan_fit > 0.0) recovery.update(std::log(stats.scan_fit));
   stats.log_w_slow = recovery.log_w_slow();
   stats.log_w_fast = recovery.log_w_fast();
   if (degenerate) {
@@ -230,7 +232,9 @@ void Localizer::Impl::adapt_motion_noise(const Pose2& odometry) {
   if (usable) odometry_noise.add(last_odometry, odometry, last_estimate, estimate_now);
   last_estimate = estimate_now;
   stats.alphas = {config.alpha1, config.alpha2, config.alpha3, config.alpha4};
-  if (!config.adaptive_motion_noise || config.odom_model_type == OdomModel::kAckermann) return;
+  // The fit's terms are the differential model's (two rotations, table 5.6); the omni and
+  // Ackermann models read their alphas differently.
+  if (!config.adaptive_motion_noise || config.odom_model_type != OdomModel::kDiff) return;
   const std::optional<OdometryAlphas> fitted = odometry_noise.alphas();
   if (!fitted) return;
   LocalizerConfig adapted = config;

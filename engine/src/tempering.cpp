@@ -13,7 +13,10 @@ struct Tempered {
   const float* logw;
   const float* loglik;
   float tau;
-  float operator()(std::size_t i) const { return logw[i] + tau * loglik[i]; }
+  // At tau = 0 the prior itself, even where the log-likelihood is -inf (0 * -inf is NaN).
+  float operator()(std::size_t i) const {
+    return tau == 0.0F ? logw[i] : logw[i] + tau * loglik[i];
+  }
 };
 
 }  // namespace
@@ -43,13 +46,14 @@ TemperingChoice choose_tempering(const float* logw, const float* loglik, std::si
     return choice;
   };
   if (const double e = ess(config.max_tau); e >= target - slack) return accept(config.max_tau, e);
-  if (const double e = ess(config.min_tau); e <= target + slack) return accept(config.min_tau, e);
+  const double ess_min_tau = ess(config.min_tau);
+  if (ess_min_tau <= target + slack) return accept(config.min_tau, ess_min_tau);
   // Invariant: ESS(lo) > target > ESS(hi); bisect in log tau, since the exponent that fits
   // spans decades (0.5 for a sparse scan near the truth, 1e-3 for a dense one far from it).
   double lo = std::log(config.min_tau);
   double hi = std::log(config.max_tau);
   double best_tau = config.min_tau;
-  double best_ess = choice.ess_before;
+  double best_ess = ess_min_tau;
   while (choice.trials < config.max_trials + 3) {
     const double mid = 0.5 * (lo + hi);
     const double tau = std::exp(mid);

@@ -218,6 +218,28 @@ TEST_F(LocalizerOnIntel, InjectsAfterAKidnappingInAmclModeAlikeFor60And180Beams)
   EXPECT_NEAR(shares[0], shares[1], 0.25 * shares[0]);
 }
 
+// Found in review: with the beam model (which keeps no-return readings) a run of scans with
+// every beam at max range gave a scan fit of 0, whose log (-inf) pulled w_fast down until
+// injection started. Such scans now leave the recovery averages alone.
+TEST_F(LocalizerOnIntel, AllMaxRangeScansDoNotTriggerInjection) {
+  LocalizerConfig config = tracking_config(1000);
+  config.laser_model_type = LaserModel::kBeam;
+  Localizer filter(*map_, config);
+  filter.initialize(start_, diagonal_covariance(0.05, 2 * kDeg));
+  Drive drive(*map_, start_, 3);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 5; ++k) drive.feed(filter);
+  const double fast = filter.last_update().log_w_fast;
+  for (int k = 0; k < 10; ++k) {
+    const Pose2 odom = drive.advance();
+    LaserScan scan = drive.sim.scan_at(drive.truth);
+    for (float& r : scan.ranges) r = scan.range_max;
+    ASSERT_TRUE(filter.update(odom, scan));
+    EXPECT_EQ(filter.last_update().injected, 0U) << k;
+    EXPECT_EQ(filter.last_update().log_w_fast, fast) << k;
+  }
+}
+
 // Runs 100 updates and returns the particle columns, bytes and all.
 std::vector<float> run_filter(const OccupancyGrid& map, Pose2 start, int threads, std::size_t grain,
                               LaserModel model) {

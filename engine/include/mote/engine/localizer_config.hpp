@@ -44,7 +44,9 @@ struct LocalizerConfig {
   /// Global initialization draws this many particles per KLD bin of free space (free area /
   /// kld_bin_xy^2 times the heading bins), within [min_particles, max_particles]: one per bin
   /// puts a particle within half a bin (25 cm, 5 degrees) of any pose, the basin from which the
-  /// likelihood field pulls it in. 0 draws max_particles (nav2).
+  /// likelihood field pulls it in. Above 0, initialize() also keeps only the shortest prefix of
+  /// its max_particles Gaussian draws that Fox's rule finds large enough. 0 draws
+  /// max_particles at both initializations (nav2).
   double global_particles_per_bin = 1.0;
   double pf_err = 0.05;  ///< KLD epsilon: max K-L divergence between sample and true posterior
   /// KLD confidence. With kld_z_is_quantile false (mote's default) it is the probability 1 - delta
@@ -90,7 +92,8 @@ struct LocalizerConfig {
   double alpha5 = 0.2;                  ///< strafe noise from translation (omni only)
   double wheelbase = 0.5;               ///< m, Ackermann only
   /// Fit alpha1..alpha4 online from the filter's corrections (odometry_noise.hpp) once 20
-  /// updates have been seen, starting from the values above (diff and omni models; nav2: off).
+  /// updates have been seen, starting from the values above (diff model only: omni and
+  /// Ackermann read their alphas differently; nav2: off).
   bool adaptive_motion_noise = true;
 
   // --- sensor model (Thrun tables 6.1, 6.3) -----------------------------------------------
