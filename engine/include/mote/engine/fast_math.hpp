@@ -43,7 +43,7 @@ namespace detail {
 // Bit masks rather than ?: on floats, which GCC 12 leaves as control flow here (the loops
 // calling these would stay scalar).
 [[nodiscard]] inline std::uint32_t int32_range_mask(float v) noexcept {
-  return (v > -1e9F) & (v < 1e9F) ? ~0U : 0U;
+  return ((v > -1e9F) & (v < 1e9F)) ? ~0U : 0U;
 }
 [[nodiscard]] inline float int32_safe(float v) noexcept {
   return std::bit_cast<float>(std::bit_cast<std::uint32_t>(v) & int32_range_mask(v));
