@@ -91,6 +91,7 @@ const std::vector<Key>& keys() {
         field<double>("alpha5", kNum, &LocalizerConfig::alpha5),
         field<double>("wheelbase", kNum, &LocalizerConfig::wheelbase),
         field<bool>("adaptive_motion_noise", kBool, &LocalizerConfig::adaptive_motion_noise),
+        field<bool>("unmapped_obstacle_filter", kBool, &LocalizerConfig::unmapped_obstacle_filter),
         field<int>("max_beams", kInt, &LocalizerConfig::max_beams),
         field<double>("laser_min_range", kNum, &LocalizerConfig::laser_min_range),
         field<double>("laser_max_range", kNum, &LocalizerConfig::laser_max_range),
@@ -176,13 +177,15 @@ void apply_key(LocalizerConfig& config, const std::string& key, const YAML::Node
     }
     if (key == "laser_model_type" && value.as<std::string>() == "likelihood_field_prob") {
       warnings.push_back(warning(name, place_of(value, key),
-                                 "beam skipping is not implemented; using likelihood_field"));
+                                 "beam skipping is not implemented (unmapped_obstacle_filter does "
+                                 "its job); using likelihood_field"));
     }
     return;
   }
   if (key.starts_with("beam_skip") || key == "do_beamskip") {
-    warnings.push_back(
-        warning(name, place_of(value, key), "beam skipping is not implemented; key ignored"));
+    warnings.push_back(warning(
+        name, place_of(value, key),
+        "beam skipping is not implemented (unmapped_obstacle_filter does its job); key ignored"));
   } else if (!is_ros_only(key)) {
     warnings.push_back(warning(name, place_of(value, key), "unknown key ignored"));
   }

@@ -110,7 +110,10 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
     executor.run([&] {
       if (has_odometry) timed(stats.ms.motion, [&] { predict(odometry); });
       moved = has_odometry;
-      timed(stats.ms.sensor, [&] { weigh(); });
+      timed(stats.ms.sensor, [&] {
+        drop_blocked_beams();
+        weigh();
+      });
       timed(stats.ms.normalize, [&] {
         temper();
         normalize();

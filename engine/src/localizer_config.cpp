@@ -95,6 +95,7 @@ LocalizerConfig nav2_defaults() {
   c.recovery_alpha_fast = 0.0;
   c.likelihood_tempering = 1.0;
   c.adaptive_motion_noise = false;
+  c.unmapped_obstacle_filter = false;
   c.recovery_fit_band = 0.0;
   return c;
 }

@@ -7,6 +7,7 @@
 #include <variant>
 #include <vector>
 
+#include "blocked_beams.hpp"
 #include "mote/engine/beam_model.hpp"
 #include "mote/engine/beams.hpp"
 #include "mote/engine/executor.hpp"
@@ -43,6 +44,7 @@ struct Localizer::Impl {
   bool reset_odometry(const Pose2& odometry);
   void run_filter(const Pose2& odometry);  // motion .. estimate, in the executor
   void predict(const Pose2& odometry);
+  void drop_blocked_beams();  // unmapped_obstacle_filter, at the predicted particles
   void weigh();
   void temper();
   void normalize();
@@ -68,6 +70,7 @@ struct Localizer::Impl {
   KldBins bins;
   AugmentedMcl recovery;
   ScanFit fit;
+  BlockedBeamFilter blocked_filter;
   OdometryNoiseEstimator odometry_noise;
   Pose2 last_estimate;       // best estimate after the previous update
   PoseSummarizer summarize;  // keeps its scratch memory between updates

@@ -151,12 +151,24 @@ void Localizer::Impl::predict(const Pose2& odometry) {
       motion);
 }
 
+void Localizer::Impl::drop_blocked_beams() {
+  if (!config.unmapped_obstacle_filter) return;
+  stats.blocked_beams = blocked_filter(beams, std::as_const(store).view(), fit, estimate.best());
+  stats.beams = beams.size();
+  if (beams.empty()) {
+    stats.reason =
+        "every beam is blocked by something the map does not hold "
+        "(unmapped_obstacle_filter): motion only";
+  }
+}
+
 void Localizer::Impl::weigh() {
   stats.weighed = store.size();
   // The untempered scan log-likelihood of every particle goes to its own column: tempering
   // chooses its exponent from it, and the prior weights stay untouched until then.
   const ParticleView p = store.view();
   loglik.assign(p.padded_size(), 0.0F);
+  if (beams.empty()) return;  // every beam blocked: the weights stay the prior's
   const ParticleView into{p.x, p.y, p.theta, loglik.data(), p.count};
   std::visit(
       [&](auto& model) {
@@ -228,7 +240,8 @@ void Localizer::Impl::maybe_inject() {
 void Localizer::Impl::adapt_motion_noise(const Pose2& odometry) {
   const Pose2 estimate_now = estimate.best().mean;
   const bool usable =
-      has_odometry && stats.outcome == UpdateOutcome::kUpdated && stats.injected == 0;
+      has_odometry && stats.outcome == UpdateOutcome::kUpdated && stats.injected == 0 &&
+      !beams.empty();  // a motion-only update's estimate follows the odometry: no residual
   if (usable) odometry_noise.add(last_odometry, odometry, last_estimate, estimate_now);
   last_estimate = estimate_now;
   stats.alphas = {config.alpha1, config.alpha2, config.alpha3, config.alpha4};

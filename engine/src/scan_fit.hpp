@@ -36,6 +36,11 @@ class ScanFit {
   /// it from one thread.
   [[nodiscard]] double operator()(const BeamSet& beams, const ConstParticleView& particles);
 
+  [[nodiscard]] const OccupancyGrid& grid() const noexcept { return grid_; }
+  [[nodiscard]] const MixtureParams& mixture() const noexcept { return mixture_; }
+  /// Distances to the nearest occupied cell, m, clamped at max_distance.
+  [[nodiscard]] const DistanceField& field() const noexcept { return field_; }
+
  private:
   // Mean log density of the robot-frame endpoints `ends` seen from `pose`.
   [[nodiscard]] double mean_log_density(const std::vector<Point2>& ends, const Pose2& pose) const;

@@ -128,6 +128,7 @@ TEST(LoadConfig, Nav2FileStartsFromNav2Defaults) {
   EXPECT_DOUBLE_EQ(c.likelihood_tempering, 1.0);
   EXPECT_DOUBLE_EQ(c.recovery_alpha_slow, 0.0);
   EXPECT_FALSE(c.adaptive_motion_noise);
+  EXPECT_FALSE(c.unmapped_obstacle_filter);
   EXPECT_DOUBLE_EQ(c.global_particles_per_bin, 0.0);
 }
 
@@ -139,6 +140,9 @@ TEST(ParseConfig, DefaultsKeyChoosesTheBase) {
   const LocalizerConfig mote = parse_config("defaults: mote\nseed: 3\n", "m.yaml").config;
   EXPECT_DOUBLE_EQ(mote.likelihood_tempering, 0.0);
   EXPECT_TRUE(mote.adaptive_motion_noise);
+  EXPECT_TRUE(mote.unmapped_obstacle_filter);
+  EXPECT_FALSE(
+      parse_config("unmapped_obstacle_filter: false\n", "u.yaml").config.unmapped_obstacle_filter);
   // Order does not matter: defaults applies first.
   EXPECT_EQ(parse_config("max_particles: 900\ndefaults: nav2\n", "o.yaml").config.max_particles,
             900);

@@ -74,11 +74,14 @@ struct PhaseTimes {
 /// Statistics of the last call to update().
 struct UpdateStats {
   UpdateOutcome outcome = UpdateOutcome::kNotMoved;
-  std::string reason;                  ///< one line, for the outcomes that did not update normally
-  std::uint64_t step = 0;              ///< filter updates run so far
-  std::size_t particles = 0;           ///< particles after the update
-  std::size_t weighed = 0;             ///< particles the scan weighed (before resampling)
-  std::size_t beams = 0;               ///< beams used
+  std::string reason;         ///< one line, for the outcomes that did not update normally
+  std::uint64_t step = 0;     ///< filter updates run so far
+  std::size_t particles = 0;  ///< particles after the update
+  std::size_t weighed = 0;    ///< particles the scan weighed (before resampling)
+  std::size_t beams = 0;      ///< beams weighed
+  /// Beams selected but left out as blocked by something the map does not hold
+  /// (unmapped_obstacle_filter); not in `beams`.
+  std::size_t blocked_beams = 0;
   double effective_sample_size = 0.0;  ///< of the weighed set
   bool resampled = false;
   std::size_t injected = 0;  ///< recovery particles drawn from free space

@@ -118,6 +118,11 @@ struct LocalizerConfig {
   /// Adaptive tempering: the scan may lower the ESS to this share of its value before the scan.
   double tempering_ess_fraction = 0.1;
   bool unknown_cells_block_rays = true;  ///< beam model: unknown cells stop rays (amcl)
+  /// Once the belief has settled on one place, leave out, for every particle alike, the beams
+  /// that most of it finds blocked by something the map does not hold (people, a crowd, furniture):
+  /// the reading ends well short of the first mapped wall along the beam (Fox et al. 1999's
+  /// distance filter, blocked_beams.hpp). nav2: off (its beam skipping is not implemented).
+  bool unmapped_obstacle_filter = true;
 
   // --- execution -----------------------------------------------------------------------------
   int threads = 0;           ///< worker threads; 0 = every core

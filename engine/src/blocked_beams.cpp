@@ -1,0 +1,146 @@
+#include "blocked_beams.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace mote {
+namespace {
+
+// The distance field in cell units, walked in the grid frame (no per-step frame change).
+class FieldWalker {
+ public:
+  explicit FieldWalker(const ScanFit& fit)
+      : grid_(fit.grid()),
+        distances_(fit.field().distances().data()),
+        inv_cell_(1.0 / grid_.resolution()),
+        width_(grid_.width()),
+        height_(grid_.height()) {}
+
+  // A map-frame point and direction in grid-frame cell units.
+  [[nodiscard]] Point2 cell_point(Point2 world) const {
+    const Point2 g = grid_.to_grid_frame(world);
+    return {g.x * inv_cell_, g.y * inv_cell_};
+  }
+  [[nodiscard]] Point2 cell_direction(double ux, double uy) const {
+    const Point2 o = grid_.to_grid_frame({0.0, 0.0});
+    const Point2 e = grid_.to_grid_frame({ux, uy});
+    return {e.x - o.x, e.y - o.y};
+  }
+  // Distance (cells) from the cell holding p to the nearest occupied cell centre, or -1 off
+  // the map.
+  [[nodiscard]] double cells_to_wall(Point2 p) const {
+    const double fi = std::floor(p.x);
+    const double fj = std::floor(p.y);
+    if (!(fi >= 0.0 && fj >= 0.0 && fi < width_ && fj < height_)) return -1.0;
+    const auto index = static_cast<std::size_t>(fj) * static_cast<std::size_t>(width_) +
+                       static_cast<std::size_t>(fi);
+    return distances_[index] * inv_cell_;
+  }
+  // True when the map holds no obstacle on the ray p + t u for t in [from, to] (cells).
+  // Sphere tracing: from any point the nearest occupied cell centre is d away, so the ray is
+  // free for d less 1.5 cells (the point anywhere in its cell, the occupied cell's extent);
+  // steps are at least half a cell. Off the map the ray is past every mapped wall: not free.
+  [[nodiscard]] bool free(Point2 p, Point2 u, double from, double to) const {
+    for (double t = from; t < to;) {
+      const double d = cells_to_wall({p.x + t * u.x, p.y + t * u.y});
+      if (d < 0.5) return false;  // an occupied cell, or off the map
+      t += std::max(d - 1.5, 0.5);
+    }
+    return true;
+  }
+  [[nodiscard]] double inv_cell() const { return inv_cell_; }
+
+ private:
+  const OccupancyGrid& grid_;
+  const float* distances_;
+  double inv_cell_;
+  double width_;
+  double height_;
+};
+
+// The miss |z - z*| beyond which a reading is more probably random than a hit: where
+// z_hit N(d; 0, sigma_hit^2) falls to z_rand / z_max (Thrun eq. 6.4 against eq. 6.11). 0 when
+// the hit term never rises above the floor, +inf when there is no floor (z_rand = 0).
+double hit_band(const MixtureParams& m, double range_max) {
+  if (!(m.z_rand > 0.0)) return std::numeric_limits<double>::infinity();
+  const double peak = m.z_hit / (m.sigma_hit * std::sqrt(2.0 * std::numbers::pi));
+  const double ratio = peak / (m.z_rand / range_max);
+  return ratio > 1.0 ? m.sigma_hit * std::sqrt(2.0 * std::log(ratio)) : 0.0;
+}
+
+// Mean range of the readings that have an endpoint (0 when none has).
+double mean_endpoint_range(const BeamSet& beams) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const float r : beams.range) {
+    if (!(r < beams.range_max)) continue;
+    sum += r;
+    ++count;
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+}  // namespace
+
+void BlockedBeamFilter::accumulate(const BeamSet& beams, const Pose2& pose, double w,
+                                   const ScanFit& fit, double band) {
+  const FieldWalker walk(fit);
+  const double k = walk.inv_cell();
+  const double near_wall = std::max(fit.mixture().sigma_hit * k, 1.5);
+  const Pose2 sensor = compose(pose, beams.sensor_pose);
+  const Point2 origin = walk.cell_point({sensor.x, sensor.y});
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    const double r = beams.range[b];
+    if (!(r < beams.range_max)) continue;  // a no-return has no endpoint
+    const double a = sensor.theta + beams.angle[b];
+    const Point2 u = walk.cell_direction(std::cos(a), std::sin(a));
+    // An endpoint within sigma_hit of a wall is a hit wherever the ray went (the likelihood
+    // field scores it near its peak); only the others are traced, first past the endpoint
+    // (where a wall within the band ends most of them), then up to it.
+    const double at_end = walk.cells_to_wall({origin.x + r * k * u.x, origin.y + r * k * u.y});
+    if (at_end < near_wall) continue;  // on a wall, or off the map
+    const double beyond = std::min(r + band, static_cast<double>(beams.range_max));
+    if (walk.free(origin, u, r * k, beyond * k) && walk.free(origin, u, 0.0, r * k)) {
+      blocked_[b] += w;
+    }
+  }
+}
+
+bool BlockedBeamFilter::focused(const PoseEstimate& heaviest, double band, double range) {
+  const Eigen::Matrix3d& c = heaviest.covariance;
+  const double spread = std::sqrt(c(0, 0) + c(1, 1)) + std::sqrt(c(2, 2)) * range;
+  return heaviest.weight >= kFocusedWeight && spread < band;
+}
+
+std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleView& p,
+                                          const ScanFit& fit, const PoseEstimate& heaviest) {
+  const std::size_t n = p.size();
+  const double band = hit_band(fit.mixture(), beams.range_max);
+  if (n == 0 || beams.empty() || !std::isfinite(band)) return 0;
+  if (!focused(heaviest, band, mean_endpoint_range(beams))) return 0;
+  blocked_.assign(beams.size(), 0.0);
+  const std::size_t stride = std::max<std::size_t>(1, (n + kSample - 1) / kSample);
+  double total = 0.0;
+  for (std::size_t i = 0; i < n; i += stride) {
+    const double w = std::exp(static_cast<double>(p.logw[i]));
+    if (!(w > 0.0) || !is_finite(p.pose(i))) continue;
+    accumulate(beams, p.pose(i), w, fit, band);
+    total += w;
+  }
+  if (!(total > 0.0)) return 0;
+  std::size_t kept = 0;
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    if (blocked_[b] > kAgreement * total) continue;
+    beams.angle[kept] = beams.angle[b];
+    beams.range[kept] = beams.range[b];
+    ++kept;
+  }
+  const std::size_t removed = beams.size() - kept;
+  beams.angle.resize(kept);
+  beams.range.resize(kept);
+  return removed;
+}
+
+}  // namespace mote

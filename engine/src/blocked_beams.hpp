@@ -1,0 +1,60 @@
+#pragma once
+// Beams blocked by something the map does not hold (people, carts, a crowd around the robot),
+// found before the scan is weighed and left out of it. Internal.
+
+#include <cstddef>
+#include <vector>
+
+#include "mote/engine/beams.hpp"
+#include "mote/engine/estimate.hpp"
+#include "mote/engine/particles.hpp"
+#include "scan_fit.hpp"
+
+namespace mote {
+
+/// The distance filter of Fox, Burgard and Thrun ("Markov localization for mobile robots in
+/// dynamic environments", JAIR 11, 1999, section 4.2) on the map's distance field. A reading z
+/// is blocked at a pose when the map holds no obstacle along the beam up to z + band: the beam
+/// stopped short of where the map says it ends, by more than the miss at which the hit term
+/// z_hit N(z - z*; 0, sigma_hit^2) falls below the random floor z_rand / z_max (Thrun eqs. 6.4,
+/// 6.11); that is what the beam model's z_short term explains. An endpoint on a wall is never
+/// blocked, and a reading past a wall is not either (a map error or a wrong pose, which the
+/// weighting must see). The probability that a beam is blocked is the belief's weight on the
+/// poses where it is, over an even stride sample of the predicted particles (the belief
+/// before this scan, as in Fox et al.); a beam that most of the belief finds blocked is left out
+/// for every particle, once the belief has settled on one place (kFocusedWeight). Dropping it for
+/// all particles alike favours none of them, unlike weighing it with the likelihood field, where a
+/// crowd's readings reward whichever wrong pose puts a wall at 0.5 m. With z_rand = 0 no reading is
+/// ever random and the filter drops nothing.
+class BlockedBeamFilter {
+ public:
+  /// Particles evaluated at most.
+  static constexpr std::size_t kSample = 64;
+  /// Share of the belief that must find a beam blocked for it to be left out: a majority.
+  static constexpr double kAgreement = 0.5;
+  /// Share of the belief its heaviest cluster must hold for the filter to run (focused()).
+  static constexpr double kFocusedWeight = 0.9;
+
+  /// Removes the blocked beams from `beams` (keeping their order); returns how many it removed.
+  /// `fit` supplies the map, its distance field and the sensor mixture; `heaviest` is the
+  /// belief's heaviest cluster before this scan. Nothing is removed unless the belief is
+  /// focused().
+  std::size_t operator()(BeamSet& beams, const ConstParticleView& particles, const ScanFit& fit,
+                         const PoseEstimate& heaviest);
+
+  /// Whether the belief has settled on one place closely enough to say where the walls are:
+  /// its heaviest cluster holds kFocusedWeight of it, and its spread moves a typical endpoint
+  /// (position standard deviation plus heading standard deviation times the mean range) by
+  /// less than the hit band. A diffuse belief (global localization) finds most short readings
+  /// "blocked" at its many open poses, yet those readings are what tells the poses apart.
+  [[nodiscard]] static bool focused(const PoseEstimate& heaviest, double band, double range);
+
+ private:
+  // Adds `w` to blocked_[b] for every beam b blocked at `pose`.
+  void accumulate(const BeamSet& beams, const Pose2& pose, double w, const ScanFit& fit,
+                  double band);
+
+  std::vector<double> blocked_;  // per beam: belief weight on the poses where it is blocked
+};
+
+}  // namespace mote
