@@ -45,6 +45,7 @@ void record_update(ReplayResult& result, const Localizer& filter, double stamp) 
                             .particles = stats.particles,
                             .weighed = stats.weighed,
                             .beams = stats.beams,
+                            .blocked_beams = stats.blocked_beams,
                             .effective_sample_size = stats.effective_sample_size,
                             .tempering = stats.tempering,
                             .scan_fit = stats.scan_fit,

@@ -143,13 +143,18 @@ void print_profile(std::ostream& out, const RunProfile& profile) {
 }  // namespace
 
 // What the adaptive mechanisms chose over the run: the tempering exponent (median, range),
-// injected particles, resamplings and the odometry noise in use at the end.
+// injected particles, resamplings, beams left out as blocked by unmapped obstacles (and in how
+// many updates) and the odometry noise in use at the end.
 void write_filter_decisions(JsonWriter& json, const ReplayResult& result) {
   std::vector<double> taus;
   std::uint64_t injected = 0;
   std::uint64_t resampled = 0;
+  std::uint64_t blocked = 0;
+  std::uint64_t blocked_updates = 0;
   for (const UpdateRecord& u : result.updates) {
     taus.push_back(u.tempering);
+    blocked += u.blocked_beams;
+    blocked_updates += u.blocked_beams > 0 ? 1 : 0;
     injected += u.injected;
     resampled += u.resampled ? 1 : 0;
   }
@@ -160,6 +165,7 @@ void write_filter_decisions(JsonWriter& json, const ReplayResult& result) {
   json.member("median", tau.p50).member("min", tau_min).member("max", tau.max);
   json.end_object();
   json.member("injected_particles", injected).member("resampled_updates", resampled);
+  json.member("blocked_beams", blocked).member("updates_with_blocked_beams", blocked_updates);
   const OdometryAlphas a = result.updates.empty() ? OdometryAlphas{} : result.updates.back().alphas;
   json.key("final_alphas").begin_array();
   for (const double v : {a.alpha1, a.alpha2, a.alpha3, a.alpha4}) json.value(v);

@@ -19,6 +19,8 @@ constexpr std::string_view kHelp =
     "  simulate  write a simulated log (CARMEN) and its reference trajectory for a map\n"
     "  kidnap    splice a kidnapped-robot test from a log with reference poses (for\n"
     "            mote replay --kidnapped-at)\n"
+    "  crowd     put a ring of people around the robot for a stretch of a log (a test of\n"
+    "            riding out readings the map cannot explain)\n"
     "  run       simulate ~60 s on the bundled floor plan, replay it with global\n"
     "            initialization and print the summary (what `make run` calls)\n\n"
     "`mote COMMAND --help` lists each command's flags with units and defaults.\n";
@@ -27,6 +29,7 @@ int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "replay") return mote::tool::replay_command(rest);
   if (command == "simulate") return mote::tool::simulate_command(rest);
   if (command == "kidnap") return mote::tool::kidnap_command(rest);
+  if (command == "crowd") return mote::tool::crowd_command(rest);
   if (command == "run") return mote::tool::run_command(rest);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kHelp;

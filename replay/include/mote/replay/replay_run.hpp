@@ -56,7 +56,8 @@ struct UpdateRecord {
   PhaseTimes ms;       ///< wall-clock phase times
   std::size_t particles = 0;
   std::size_t weighed = 0;
-  std::size_t beams = 0;
+  std::size_t beams = 0;               ///< beams weighed
+  std::size_t blocked_beams = 0;       ///< beams left out by unmapped_obstacle_filter
   double effective_sample_size = 0.0;  ///< of the weighed set
   double tempering = 1.0;              ///< likelihood exponent applied
   double scan_fit = 0.0;               ///< share of endpoints the map explains (recovery)

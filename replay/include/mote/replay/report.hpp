@@ -44,7 +44,8 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
 void print_summary(std::ostream& out, const ReplayResult& result,
                    const ReportOptions& options = {});
 
-/// Writes one CSV line per update that ran: stamp, particles, weighed, beams, ess, tempering,
+/// Writes one CSV line per update that ran: stamp, particles, weighed, beams, blocked_beams, ess,
+/// tempering,
 /// scan_fit, injected, resampled, alpha1..alpha4, total_ms. Throws mote::Error when it cannot be
 /// written.
 void write_updates_csv(const std::filesystem::path& file, const ReplayResult& result);
