@@ -202,7 +202,8 @@ void Localizer::Impl::normalize() {
   // injection lowered the fit and called for more injection).
   // A scan without an endpoint (every beam a no-return, the beam model keeps them) says
   // nothing about how well the map fits: the averages keep their values.
-  stats.scan_fit = fit(beams, std::as_const(store).view());
+  // With recovery off (nav2's defaults) nothing reads the fit: it is not computed (0).
+  if (recovery.enabled()) stats.scan_fit = fit(beams, std::as_const(store).view());
   if (stats.scan_fit > 0.0) recovery.update(std::log(stats.scan_fit));
   stats.log_w_slow = recovery.log_w_slow();
   stats.log_w_fast = recovery.log_w_fast();

@@ -51,7 +51,7 @@ void AugmentedMcl::update(double log_mean_likelihood) noexcept {
 }
 
 double AugmentedMcl::injection_probability() const noexcept {
-  if (!started_ || config_.alpha_slow <= 0.0 || config_.alpha_fast <= 0.0) return 0.0;
+  if (!started_ || !enabled()) return 0.0;
   if (log_slow_ == -std::numeric_limits<double>::infinity()) return 1.0;
   return std::max(0.0, 1.0 - std::exp(log_fast_ - log_slow_ - std::log1p(-config_.band)));
 }

@@ -88,7 +88,7 @@ struct UpdateStats {
   double tempering = 1.0;    ///< likelihood exponent tau applied to this scan
   int tempering_trials = 0;  ///< ESS evaluations of the adaptive search (0 when fixed)
   /// Per-beam geometric mean of the likelihood-field density at the posterior particles
-  /// (scan_fit.hpp): what augmented MCL's w_slow / w_fast average.
+  /// (scan_fit.hpp): what augmented MCL's w_slow / w_fast average; 0 when recovery is off.
   double scan_fit = 0.0;
   /// The odometry noise the next motion step samples with (config's until adapted).
   OdometryAlphas alphas;

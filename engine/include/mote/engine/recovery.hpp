@@ -43,6 +43,10 @@ class AugmentedMcl {
   /// disabled.
   [[nodiscard]] double injection_probability() const noexcept;
 
+  /// False when the config disables recovery (an alpha of 0): update() is then not needed.
+  [[nodiscard]] bool enabled() const noexcept {
+    return config_.alpha_slow > 0.0 && config_.alpha_fast > 0.0;
+  }
   [[nodiscard]] double log_w_slow() const noexcept { return log_slow_; }
   [[nodiscard]] double log_w_fast() const noexcept { return log_fast_; }
   /// Forgets the averages (e.g. after a manual re-initialization).
