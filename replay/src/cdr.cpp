@@ -23,20 +23,19 @@ CdrReader::CdrReader(std::string_view message) : bytes_(message) {
     throw BagDecodeError{0, needs("CDR encapsulation header", kHeaderBytes, message.size())};
   }
   const auto kind = static_cast<unsigned char>(message[1]);
-  // 0x00/0x01: plain CDR (XCDR1) big/little endian; 0x06/0x07: plain CDR2 (XCDR2), whose
-  // 8-byte values align to 4 (DDS-XTypes 1.3, 7.4.1.2.1). Parameter lists are not plain.
-  if (message[0] != 0 || (kind != 0x00 && kind != 0x01 && kind != 0x06 && kind != 0x07)) {
-    throw BagDecodeError{0, "unsupported CDR encapsulation 0x" +
-                                std::string(1, "0123456789abcdef"[kind >> 4U]) +
-                                std::string(1, "0123456789abcdef"[kind & 15U]) +
-                                ": expected plain CDR or CDR2 (0x00, 0x01, 0x06, 0x07)"};
+  // 0x00/0x01: plain CDR (XCDR1), big/little endian, what ROS 2 middlewares write. XCDR2 and
+  // parameter lists add member headers this decoder does not read, so they are refused.
+  if (message[0] != 0 || kind > 0x01) {
+    static constexpr std::string_view kHex = "0123456789abcdef";
+    throw BagDecodeError{0, "unsupported CDR encapsulation 0x" + std::string(1, kHex[kind >> 4U]) +
+                                std::string(1, kHex[kind & 15U]) +
+                                ": expected plain CDR (0x00 big endian, 0x01 little endian)"};
   }
   little_ = (kind & 1U) != 0;
-  max_align_ = kind >= 0x06 ? 4 : 8;
 }
 
 void CdrReader::align(std::size_t size, const char* what) {
-  const std::size_t a = std::min(size, max_align_);
+  const std::size_t a = std::min<std::size_t>(size, 8);
   const std::size_t pad = (a - (pos_ - kHeaderBytes) % a) % a;
   if (pad > remaining()) throw BagDecodeError{pos_, needs(what, pad + size, remaining())};
   pos_ += pad;

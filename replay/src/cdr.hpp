@@ -3,7 +3,7 @@
 /// OMG CDR as ROS 2 (rmw_fastrtps, rmw_cyclonedds) serializes messages: a 4-byte encapsulation
 /// header (DDS-XTypes 1.3, section 7.6.3.1.2: byte 1 selects the representation and, by its low
 /// bit, little endian), then the fields, each aligned to its own size counted from the end of
-/// that header (plain CDR: up to 8; plain CDR2: up to 4). Strings are a uint32 length that
+/// that header. Strings are a uint32 length that
 /// includes the terminating NUL, then the characters; sequences a uint32 count, then the
 /// elements. Every read is bounds-checked and throws BagDecodeError with the message offset.
 
@@ -19,7 +19,7 @@ namespace mote::replay::detail {
 class CdrReader {
  public:
   /// Reads the encapsulation header; throws BagDecodeError for a short message or a
-  /// representation other than plain CDR or plain CDR2 (either byte order).
+  /// representation other than plain CDR (either byte order).
   explicit CdrReader(std::string_view message);
 
   [[nodiscard]] bool little_endian() const noexcept { return little_; }
@@ -47,7 +47,6 @@ class CdrReader {
 
   std::string_view bytes_;
   std::size_t pos_ = 4;
-  std::size_t max_align_ = 8;
   bool little_ = true;
 };
 

@@ -100,6 +100,7 @@ class McapStorage final : public Ros2Storage {
       fail(footer_at, "expected the footer record before the trailing magic");
     }
     const mcap::Footer f = mcap::parse_footer(std::string_view(footer).substr(9));
+    has_footer_ = true;
     data_end_ = f.summary_start == 0 ? footer_at : f.summary_start;
     if (f.summary_start == 0) return false;
     if (f.summary_start < mcap::kMagic.size() || f.summary_start > footer_at) {
@@ -214,11 +215,16 @@ class McapStorage final : public Ros2Storage {
         definition(static_cast<Op>(r->op), r->content, 0);
       }
     } catch (const BagDecodeError& e) {
-      if (!options_.lenient) fail(at, "chunk: " + e.problem);
+      if (!options_.lenient) throw InputError(name_, chunk_place(at, e.offset), e.problem);
     }
   }
 
   // --- messages -------------------------------------------------------------------------
+
+  static std::string chunk_place(std::uint64_t chunk_at, std::uint64_t offset) {
+    return "byte " + std::to_string(chunk_at) + " (chunk), offset " + std::to_string(offset) +
+           " of its records";
+  }
 
   /// A chunk's records, decompressed and CRC-checked.
   std::string open_chunk(std::string_view content) {
@@ -257,6 +263,10 @@ class McapStorage final : public Ros2Storage {
       const auto op = static_cast<Op>(h->op);
       if (op == Op::kFooter || op == Op::kDataEnd) {
         if (op == Op::kDataEnd) check_data_crc(*h);
+        if (!has_footer_)
+          warn(h->end(),
+               "the file ends after its Data End record without the "
+               "footer and closing magic (cut short?)");
         linear_done_ = true;
         return false;
       }
@@ -273,13 +283,15 @@ class McapStorage final : public Ros2Storage {
   void end_of_records() {
     linear_done_ = true;
     if (linear_at_ >= data_end_ && data_end_ < file_.size()) return;  // summary follows
-    stats_.warnings.push_back(InputError(name_, "byte " + std::to_string(linear_at_),
-                                         "the file ends without its Data End record and footer "
-                                         "(cut short while recording?): read up to here, " +
-                                             std::to_string(file_.size() - linear_at_) +
-                                             " bytes of an incomplete record ignored")
-                                  .what());
+    warn(linear_at_,
+         "the file ends without its Data End record and footer (cut short while "
+         "recording?): read up to here, " +
+             std::to_string(file_.size() - linear_at_) + " bytes of an incomplete record ignored");
     stats_.bytes_skipped += file_.size() - linear_at_;
+  }
+
+  void warn(std::uint64_t at, const std::string& problem) {
+    stats_.warnings.emplace_back(InputError(name_, "byte " + std::to_string(at), problem).what());
   }
 
   void check_data_crc(const mcap::RecordHead& h) {
@@ -310,8 +322,7 @@ class McapStorage final : public Ros2Storage {
       chunk_ = open_chunk(content);
       chunk_messages(at);
     } catch (const BagDecodeError& e) {
-      const std::string where = "byte " + std::to_string(at) + " (chunk), offset " +
-                                std::to_string(e.offset) + " of its records";
+      const std::string where = chunk_place(at, e.offset);
       if (!options_.lenient) throw InputError(name_, where, e.problem);
       pending_.clear();
       ++stats_.records_skipped;
@@ -346,6 +357,7 @@ class McapStorage final : public Ros2Storage {
   std::set<std::string> compressions_;
   std::uint64_t data_end_ = 0;  ///< where the data section ends (summary start, footer or EOF)
   bool indexed_ = false;
+  bool has_footer_ = false;  ///< the file ends with a footer and the closing magic
   bool saw_statistics_without_chunks_ = false;
   std::size_t next_chunk_ = 0;
   std::uint64_t linear_at_ = mcap::kMagic.size();
