@@ -82,7 +82,7 @@ std::string Ros2Source::choose(Ros2Type type, const std::string& option, const c
   }
   if (found.size() == 1) return found.front();
   if (found.empty() && !required) return "";
-  throw InputError(name_, "",
+  throw InputError(name_, "topics",
                    (found.empty() ? "no " + type_name + " topic"
                                   : "several " + type_name + " topics: " + join(found) +
                                         "; choose one with " + flag));
@@ -114,11 +114,11 @@ std::optional<Ros2Message> Ros2Source::next_message() {
 void Ros2Source::finish() {
   finished_ = true;
   if (scans_ == 0 && stats().records_skipped == 0) {
-    throw InputError(name_, "", "no message on the scan topic '" + scan_topic_ + "'");
+    throw InputError(name_, "end of the log", "no message on the scan topic '" + scan_topic_ + "'");
   }
   if (!sync_.flush(ready_, true)) {
     std::vector<std::string> parents(tf_parents_.begin(), tf_parents_.end());
-    throw InputError(name_, "",
+    throw InputError(name_, "end of the log",
                      "scans without odometry: no nav_msgs/msg/Odometry topic and no tf "
                      "transform from '" +
                          options_.odom_frame +
@@ -159,8 +159,24 @@ void Ros2Source::decode(Ros2Type type, std::string_view data) {
     sync_.add_odometry(decode_odometry_cdr(data));
   } else {
     const std::vector<TransformMessage> transforms = decode_tf_cdr(data);
-    for (const TransformMessage& t : transforms) tf_parents_.insert(t.parent);
+    for (const TransformMessage& t : transforms) {
+      tf_parents_.insert(t.parent);
+      if (t.parent == options_.odom_frame) note_base_candidate(t.child);
+    }
     sync_.add_transforms(transforms);
+  }
+}
+
+/// With odometry from tf and no --base-frame, the base is the child of the odometry frame; two
+/// of them (odom -> base_link and odom -> base_footprint) would interleave their poses.
+void Ros2Source::note_base_candidate(const std::string& child) {
+  if (!odom_topic_.empty() || !options_.base_frame.empty()) return;
+  base_candidates_.insert(child);
+  if (base_candidates_.size() > 1) {
+    const std::vector<std::string> names(base_candidates_.begin(), base_candidates_.end());
+    throw InputError(name_, "tf",
+                     "several frames under '" + options_.odom_frame + "' on tf: " + join(names) +
+                         "; choose one with --base-frame");
   }
 }
 

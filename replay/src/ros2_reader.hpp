@@ -33,6 +33,7 @@ class Ros2Source final : public ScanSource {
   void dispatch(const Ros2Message& m);
   void decode(Ros2Type type, std::string_view data);
   void finish();
+  void note_base_candidate(const std::string& child);
 
   std::string name_;
   std::vector<std::unique_ptr<Ros2Storage>> storages_;
@@ -41,6 +42,7 @@ class Ros2Source final : public ScanSource {
   ReadStats own_;
   std::map<std::string, std::set<std::string>> types_;  ///< decoded topics and their types
   std::set<std::string> tf_parents_;
+  std::set<std::string> base_candidates_;  ///< children of the odometry frame on tf
   std::string scan_topic_;
   std::string odom_topic_;
   std::deque<ScanFrame> ready_;

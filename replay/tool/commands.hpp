@@ -16,6 +16,8 @@ int replay_command(std::span<char* const> args);
 int simulate_command(std::span<char* const> args);
 /// `mote kidnap`: a kidnapped-robot log spliced from a recorded log with reference poses.
 int kidnap_command(std::span<char* const> args);
+/// `mote info`: what a recorded log holds.
+int info_command(std::span<char* const> args);
 /// `mote run`: simulate on the bundled floor plan, then replay with global initialization.
 int run_command(std::span<char* const> args);
 

@@ -19,6 +19,8 @@ constexpr std::string_view kHelp =
     "  simulate  write a simulated log (CARMEN) and its reference trajectory for a map\n"
     "  kidnap    splice a kidnapped-robot test from a log with reference poses (for\n"
     "            mote replay --kidnapped-at)\n"
+    "  info      print what a log holds: format, duration, messages per topic, the laser's\n"
+    "            beams, field of view and range limits, and the tf frames\n"
     "  run       simulate ~60 s on the bundled floor plan, replay it with global\n"
     "            initialization and print the summary (what `make run` calls)\n\n"
     "`mote COMMAND --help` lists each command's flags with units and defaults.\n";
@@ -28,6 +30,7 @@ int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "simulate") return mote::tool::simulate_command(rest);
   if (command == "kidnap") return mote::tool::kidnap_command(rest);
   if (command == "run") return mote::tool::run_command(rest);
+  if (command == "info") return mote::tool::info_command(rest);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kHelp;
     return 0;

@@ -80,16 +80,34 @@ std::string last_line(const std::string& text) {
 TEST(Cli, HelpDocumentsEveryCommandAndFlag) {
   const Outcome top = mote("--help");
   EXPECT_EQ(top.status, 0);
-  for (const char* cmd : {"replay", "simulate", "kidnap", "run"})
+  for (const char* cmd : {"replay", "simulate", "kidnap", "run", "info"})
     EXPECT_NE(top.out.find(cmd), std::string::npos);
   const Outcome replay = mote("replay --help");
   EXPECT_EQ(replay.status, 0);
-  for (const char* flag :
-       {"--map", "--log", "--out", "--reference", "--config", "--model", "--particles",
-        "--min-particles", "--max-particles", "--beams", "--threads", "--seed", "--init",
-        "--init-pose", "--lenient", "--kidnapped-at", "--laser-max-range"}) {
+  for (const char* flag : {"--map",
+                           "--log",
+                           "--out",
+                           "--reference",
+                           "--config",
+                           "--model",
+                           "--particles",
+                           "--min-particles",
+                           "--max-particles",
+                           "--beams",
+                           "--threads",
+                           "--seed",
+                           "--init",
+                           "--init-pose",
+                           "--lenient",
+                           "--kidnapped-at",
+                           "--laser-max-range",
+                           "--scan-topic",
+                           "--odom-topic",
+                           "--odom-frame",
+                           "--base-frame"}) {
     EXPECT_NE(replay.out.find(flag), std::string::npos) << flag;
   }
+  EXPECT_EQ(mote("info --help").status, 0);
   EXPECT_EQ(mote("simulate --help").status, 0);
   EXPECT_EQ(mote("run --help").status, 0);
   const Outcome kidnap = mote("kidnap --help");
@@ -106,7 +124,8 @@ TEST(Cli, BadUsageExitsWithTwoAndOneLine) {
         "replay --map m.yaml --log l.clf --out d --threads -1",
         "replay --map m.yaml --log l.clf --out d --model sonar",
         "replay --map m.yaml --log l.clf --out d --init-pose 1,2",
-        "simulate --map m.yaml --out d --seconds 1e999", "run --seed x"}) {
+        "simulate --map m.yaml --out d --seconds 1e999", "run --seed x", "info",
+        "info log.mcap --bogus"}) {
     const Outcome o = mote(args);
     EXPECT_EQ(o.status, 2) << args;
     if (std::string(args).empty()) continue;  // no command: the help text goes to stderr
@@ -361,6 +380,29 @@ TEST(Cli, Ros2GlobalLocalizationSeedsAgree) {
     ends.push_back(xy);
   }
   expect_within(ends, 0.3);
+}
+
+// `mote info` on the MCAP file and the CARMEN log: storage, counts per topic, the laser.
+TEST(Cli, InfoDescribesRos2AndCarmenLogs) {
+  MOTE_REQUIRE_DATA(mcap, "ros2/mac_take2_zstd.mcap");
+  const Outcome o = mote("info '" + mcap.string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  for (const char* text :
+       {"mcap, summary and chunk index", "compression       zstd", "duration          46.203 s",
+        "messages          2232", "/scan                        357  sensor_msgs/msg/LaserScan",
+        "/odom                        920  nav_msgs/msg/Odometry", "beams             720",
+        "359.50 deg", "0.150 to 12.000 m", "yaw 90.00 deg", "base_link -> rplidar_link (static)",
+        "odom -> base_link"}) {
+    EXPECT_NE(o.out.find(text), std::string::npos) << text << " in\n" << o.out;
+  }
+  MOTE_REQUIRE_DATA(clf, "intel/intel.clf");
+  const Outcome c = mote("info '" + clf.string() + "'");
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_NE(c.out.find("FLASER                       910"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("beams             180"), std::string::npos) << c.out;
+  const Outcome bad = mote("info '" + (fs::path(MOTE_SOURCE_DIR) / "README.md").string() + "'");
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_EQ(lines(bad.err), 1) << bad.err;
 }
 
 }  // namespace

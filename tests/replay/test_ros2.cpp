@@ -258,6 +258,23 @@ TEST(Ros2Topics, OdometryFromTfWhenThereIsNoOdometryTopic) {
   const std::vector<ScanFrame> frames = read_file(path);
   ASSERT_EQ(frames.size(), 3U);
   EXPECT_NEAR(frames[1].odometry.x, 0.4, 1e-12);
+  // A second child of odom on tf makes the base frame ambiguous unless --base-frame names it.
+  r2::McapBuilder two = b;
+  two.message(1, 3.2, r2::tf_message(3.2, {{"odom", "base_footprint", 0.6, 0.0, 0.0, false}}));
+  const auto path2 = path.parent_path() / "two_bases.mcap";
+  test::write_bytes(path2, two.finish());
+  try {
+    (void)read_file(path2);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("several frames under 'odom' on tf: 'base_footprint', "
+                                         "'base_link'; choose one with --base-frame"),
+              std::string::npos)
+        << e.what();
+  }
+  ReaderOptions base;
+  base.base_frame = "base_link";
+  EXPECT_EQ(read_file(path2, base).size(), 3U);
   ReaderOptions wrong;
   wrong.odom_frame = "world";
   try {
