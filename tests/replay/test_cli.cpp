@@ -405,4 +405,25 @@ TEST(Cli, InfoDescribesRos2AndCarmenLogs) {
   EXPECT_EQ(lines(bad.err), 1) << bad.err;
 }
 
+// An MCAP file cut short (here: the recording's zstd file cut in its middle, as a crash while
+// recording leaves it) replays up to its last complete chunk, with one warning on stderr.
+TEST(Cli, CutMcapReplaysWithAWarning) {
+  MOTE_REQUIRE_DATA(yaml, "ros2/mac_1st_floor_9_23.yaml");
+  const fs::path dir = scratch("ros2_cut");
+  const std::string whole = slurp(yaml.parent_path() / "mac_take2_zstd.mcap");
+  std::ofstream(dir / "cut.mcap", std::ios::binary) << whole.substr(0, whole.size() / 2);
+  const Outcome o =
+      mote("replay --map '" + yaml.string() + "' --log '" + (dir / "cut.mcap").string() +
+           "' --out '" + (dir / "out").string() + "' --quiet --seed 1");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_EQ(lines(o.err), 1) << o.err;
+  EXPECT_NE(o.err.find("mote replay: warning: " + (dir / "cut.mcap").string() + ": byte "),
+            std::string::npos)
+      << o.err;
+  EXPECT_NE(o.err.find("cut short while recording"), std::string::npos) << o.err;
+  const double scans = json_number(slurp(dir / "out" / "report.json"), "scans");
+  EXPECT_GT(scans, 100.0);
+  EXPECT_LT(scans, 357.0);
+}
+
 }  // namespace
