@@ -11,7 +11,7 @@
 #include <map>
 #include <set>
 
-#include "mcap_file.hpp"
+#include "mcap_summary.hpp"
 #include "mote/core/error.hpp"
 #include "ros2_storage.hpp"
 
@@ -32,12 +32,7 @@ class McapStorage final : public Ros2Storage {
  public:
   McapStorage(const std::filesystem::path& path, const ReaderOptions& options)
       : name_(path.string()), options_(options), file_(name_) {
-    data_end_ = file_.size();
-    guarded([&] {
-      if (!read_summary()) scan_definitions();
-    });
-    std::stable_sort(chunks_.begin(), chunks_.end(),
-                     [](const auto& a, const auto& b) { return a.start_time < b.start_time; });
+    guarded([&] { use_summary(mcap::read_summary(file_)); });
   }
 
   [[nodiscard]] const std::string& name() const override { return name_; }
@@ -72,10 +67,10 @@ class McapStorage final : public Ros2Storage {
 
  private:
   [[noreturn]] void fail(std::uint64_t offset, const std::string& problem) const {
-    throw InputError(name_, place_ + "byte " + std::to_string(offset), problem);
+    throw InputError(name_, "byte " + std::to_string(offset), problem);
   }
 
-  /// Runs `body`, turning a BagDecodeError (offset relative to `place_`) into an InputError.
+  /// Runs `body`, turning a BagDecodeError (a file offset) into an InputError.
   template <typename Body>
   auto guarded(Body body) -> decltype(body()) {
     try {
@@ -85,70 +80,19 @@ class McapStorage final : public Ros2Storage {
     }
   }
 
-  // --- summary section ------------------------------------------------------------------
-
-  /// Reads the summary when the footer points at one; false when the file has none.
-  bool read_summary() {
-    const std::uint64_t tail = mcap::kRecordHeader + mcap::kFooterContent + mcap::kMagic.size();
-    if (file_.size() < mcap::kMagic.size() + tail ||
-        file_.read(file_.size() - mcap::kMagic.size(), 8, "magic") != mcap::kMagic) {
-      return false;
+  /// Schemas and channels from the summary; chunks in its index order when it has a chunk
+  /// index, else (or with no summary at all) a linear scan of the data section.
+  void use_summary(mcap::Summary summary) {
+    data_end_ = summary.data_end;
+    has_footer_ = summary.has_footer;
+    for (mcap::Schema& schema : summary.schemas) add_schema(std::move(schema));
+    for (const mcap::Channel& channel : summary.channels) add_channel(channel);
+    chunks_ = std::move(summary.chunks);
+    for (const mcap::ChunkIndex& c : chunks_) {
+      compressions_.insert(c.compression.empty() ? "none" : c.compression);
     }
-    const std::uint64_t footer_at = file_.size() - tail;
-    const std::string footer = file_.read(footer_at, mcap::kRecordHeader + 20, "footer");
-    if (static_cast<Op>(footer[0]) != Op::kFooter) {
-      fail(footer_at, "expected the footer record before the trailing magic");
-    }
-    const mcap::Footer f = mcap::parse_footer(std::string_view(footer).substr(9));
-    has_footer_ = true;
-    data_end_ = f.summary_start == 0 ? footer_at : f.summary_start;
-    if (f.summary_start == 0) return false;
-    if (f.summary_start < mcap::kMagic.size() || f.summary_start > footer_at) {
-      fail(footer_at, "summary_start " + std::to_string(f.summary_start) + " is outside the file");
-    }
-    check_summary_crc(f, footer_at);
-    const std::string summary =
-        file_.read(f.summary_start, footer_at - f.summary_start, "summary section");
-    place_ = "summary at byte " + std::to_string(f.summary_start) + ", ";
-    mcap::RecordCursor cursor(summary);
-    while (const std::optional<mcap::Record> r = cursor.next()) summary_record(*r);
-    place_.clear();
     indexed_ = !chunks_.empty();
-    return indexed_ || saw_statistics_without_chunks_;
-  }
-
-  void check_summary_crc(const mcap::Footer& f, std::uint64_t footer_at) {
-    if (f.summary_crc == 0) return;
-    // The CRC covers the summary section and the footer up to its summary_crc field.
-    const std::uint64_t n = footer_at + mcap::kRecordHeader + 16 - f.summary_start;
-    const std::uint32_t crc = file_.crc(f.summary_start, n, 0);
-    if (crc != f.summary_crc) fail(footer_at, "summary CRC mismatch: the summary is corrupt");
-  }
-
-  void summary_record(const mcap::Record& r) {
-    const auto op = static_cast<Op>(r.op);
-    try {
-      if (op == Op::kSchema) add_schema(mcap::parse_schema(r.content));
-      if (op == Op::kChannel) add_channel(mcap::parse_channel(r.content));
-      if (op == Op::kChunkIndex) add_chunk_index(mcap::parse_chunk_index(r.content));
-      if (op == Op::kStatistics && mcap::parse_statistics(r.content).chunk_count == 0) {
-        saw_statistics_without_chunks_ = true;
-      }
-    } catch (BagDecodeError& e) {
-      e.offset += r.offset + mcap::kRecordHeader;
-      throw;
-    }
-  }
-
-  void add_chunk_index(const mcap::ChunkIndex& c) {
-    if (c.chunk_offset < mcap::kMagic.size() || c.chunk_offset > data_end_ ||
-        c.chunk_length > data_end_ - c.chunk_offset) {
-      throw BagDecodeError{0, "chunk index points at bytes " + std::to_string(c.chunk_offset) +
-                                  " + " + std::to_string(c.chunk_length) +
-                                  ", outside the data section"};
-    }
-    chunks_.push_back(c);
-    compressions_.insert(c.compression.empty() ? "none" : c.compression);
+    if (!indexed_ && !(summary.has_summary && summary.unchunked)) scan_definitions();
   }
 
   // --- definitions ----------------------------------------------------------------------
@@ -349,7 +293,6 @@ class McapStorage final : public Ros2Storage {
   ReaderOptions options_;
   mcap::McapFile file_;
   ReadStats stats_;
-  std::string place_;  ///< prefix of error places while reading the summary
   std::map<std::uint16_t, mcap::Schema> schemas_;
   std::map<std::uint16_t, std::size_t> topic_of_;
   std::vector<Ros2Topic> topics_;
@@ -358,7 +301,6 @@ class McapStorage final : public Ros2Storage {
   std::uint64_t data_end_ = 0;  ///< where the data section ends (summary start, footer or EOF)
   bool indexed_ = false;
   bool has_footer_ = false;  ///< the file ends with a footer and the closing magic
-  bool saw_statistics_without_chunks_ = false;
   std::size_t next_chunk_ = 0;
   std::uint64_t linear_at_ = mcap::kMagic.size();
   std::uint32_t data_crc_ = mcap::crc32(mcap::kMagic);
