@@ -39,7 +39,8 @@ std::string McapFile::read(std::uint64_t offset, std::uint64_t n, const char* wh
 std::optional<RecordHead> McapFile::head(std::uint64_t offset, std::uint64_t limit) {
   limit = std::min(limit, size_);
   if (offset > limit || limit - offset < kRecordHeader) return std::nullopt;
-  ByteReader r(read(offset, kRecordHeader, "record"));
+  const std::string prefix = read(offset, kRecordHeader, "record");  // outlives the reader
+  ByteReader r(prefix);
   RecordHead h;
   h.op = r.u8("opcode");
   h.offset = offset;
