@@ -81,7 +81,7 @@ TEST(Ros2Cdr, StringsAndSequencesPastTheEndAreErrors) {
   std::string scan = r2::laser_scan(1.0, "laser", {1.0F, 2.0F});
   // frame_id length (bytes 12..15) claims 4 GB.
   std::string long_string = scan;
-  for (int k = 12; k < 16; ++k) long_string[k] = '\xff';
+  long_string.replace(12, 4, std::string(4, '\xff'));
   {
     const std::string p = problem_of(decode_laser_scan_cdr, long_string);
     EXPECT_NE(p.find("header.frame_id: string of 4294967295 bytes runs past the end"),
