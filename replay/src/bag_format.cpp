@@ -31,6 +31,22 @@ std::uint32_t ByteReader::u32(const char* what) {
   return v;
 }
 
+std::uint8_t ByteReader::u8(const char* what) {
+  return static_cast<unsigned char>(take(1, what)[0]);
+}
+
+std::uint16_t ByteReader::u16(const char* what) {
+  const std::string_view b = take(2, what);
+  return static_cast<std::uint16_t>(
+      static_cast<unsigned char>(b[0]) |
+      (static_cast<unsigned>(static_cast<unsigned char>(b[1])) << 8U));
+}
+
+std::uint64_t ByteReader::u64(const char* what) {
+  const std::uint64_t lo = u32(what);
+  return lo | (std::uint64_t{u32(what)} << 32U);
+}
+
 float ByteReader::f32(const char* what) {
   const std::uint32_t bits = u32(what);
   float v = 0.0F;

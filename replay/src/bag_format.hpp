@@ -37,7 +37,10 @@ class ByteReader {
   [[nodiscard]] std::size_t position() const noexcept { return pos_; }
   [[nodiscard]] std::size_t remaining() const noexcept { return bytes_.size() - pos_; }
   std::string_view take(std::size_t n, const char* what);
+  std::uint8_t u8(const char* what);
+  std::uint16_t u16(const char* what);
   std::uint32_t u32(const char* what);
+  std::uint64_t u64(const char* what);
   float f32(const char* what);
   double f64(const char* what);
   /// A ROS time (uint32 sec, uint32 nsec) in seconds.

@@ -33,6 +33,9 @@ struct TransformMessage {
   std::string parent;
   std::string child;
   Pose2 pose;  ///< child frame in the parent frame
+  /// The child's z axis points down (roll or pitch of pi): angles in the child frame are
+  /// mirrored (a -> -a) before `pose` applies.
+  bool mirrored = false;
 };
 
 /// Frame names without ROS 1's optional leading '/'.

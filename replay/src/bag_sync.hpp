@@ -18,8 +18,12 @@ namespace mote::replay::detail {
 
 class ScanSync {
  public:
-  /// `odom_frame` names the odometry frame when odometry comes from tf.
-  explicit ScanSync(std::string odom_frame) : odom_frame_(std::move(odom_frame)) {}
+  /// `odom_frame` names the odometry frame when odometry comes from tf; `base_frame`, when not
+  /// empty, the robot's base frame (else the child of the odometry, from the topic or tf).
+  explicit ScanSync(std::string odom_frame, std::string base_frame = {})
+      : odom_frame_(std::move(odom_frame)),
+        base_frame_(std::move(base_frame)),
+        fixed_base_(!base_frame_.empty()) {}
 
   /// When true, odometry comes from nav_msgs/Odometry messages and tf odom poses are ignored.
   void use_odometry_topic() {
@@ -43,15 +47,22 @@ class ScanSync {
   struct Link {
     std::string parent;
     Pose2 pose;
+    bool mirrored = false;
+  };
+  /// The laser in the base frame: scan angles a become pose.theta + (mirrored ? -a : a).
+  struct Mount {
+    Pose2 pose;
+    bool mirrored = false;
   };
 
   void push_odometry(double stamp, const Pose2& pose);
   [[nodiscard]] Pose2 odometry_at(double stamp) const;
-  [[nodiscard]] std::optional<Pose2> mount(const std::string& frame) const;
+  [[nodiscard]] std::optional<Mount> mount(const std::string& frame) const;
   [[nodiscard]] bool is_base(const std::string& frame) const;
 
   std::string odom_frame_;
   std::string base_frame_;
+  bool fixed_base_ = false;
   bool from_topic_ = false;
   std::deque<Stamped> odom_;
   std::map<std::string, Link> links_;

@@ -215,6 +215,7 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   json.member("beams", result.config.max_beams);
   json.member("particles_mean", f.particles_mean);
   json.member("wall_s", result.wall_s);
+  json.member("read_s", result.read_s);
   write_filter_decisions(json, result);
   write_timing(json, f);
   write_laser_range(json, result);
@@ -241,7 +242,12 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   }
   row(out, "laser max range", range);
   row(out, "skipped records", std::to_string(result.reader.records_skipped));
-  if (options.profile) print_profile(out, profile_run(result));
+  if (options.profile) {
+    print_profile(out, profile_run(result));
+    row(out, "log reading",
+        str(result.read_s, 3) + " s of " + str(result.wall_s, 3) + " s wall (" +
+            str(100.0 * result.read_s / std::max(result.wall_s, 1e-9), 1) + " %)");
+  }
   if (!result.errors) return;
   const TrajectoryErrors& e = *result.errors;
   row(out, "matched poses", std::to_string(e.matched));

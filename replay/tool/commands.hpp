@@ -18,6 +18,8 @@ int simulate_command(std::span<char* const> args);
 int kidnap_command(std::span<char* const> args);
 /// `mote crowd`: a recorded log with people standing around the robot for a stretch.
 int crowd_command(std::span<char* const> args);
+/// `mote info`: what a recorded log holds.
+int info_command(std::span<char* const> args);
 /// `mote run`: simulate on the bundled floor plan, then replay with global initialization.
 int run_command(std::span<char* const> args);
 

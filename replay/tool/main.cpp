@@ -14,13 +14,15 @@ constexpr std::string_view kHelp =
     "usage: mote COMMAND [flags]\n\n"
     "Monte Carlo localization on 2D occupancy grids.\n\n"
     "commands:\n"
-    "  replay    run a recorded log (CARMEN .clf or ROS 1 .bag) through the filter and write\n"
-    "            report.json, trajectory.tum and map.png\n"
+    "  replay    run a recorded log (CARMEN .clf, ROS 1 .bag, ROS 2 rosbag2 folder, .mcap or\n"
+    "            .db3) through the filter and write report.json, trajectory.tum and map.png\n"
     "  simulate  write a simulated log (CARMEN) and its reference trajectory for a map\n"
     "  kidnap    splice a kidnapped-robot test from a log with reference poses (for\n"
     "            mote replay --kidnapped-at)\n"
     "  crowd     put a ring of people around the robot for a stretch of a log (a test of\n"
     "            riding out readings the map cannot explain)\n"
+    "  info      print what a log holds: format, duration, messages per topic, the laser's\n"
+    "            beams, field of view and range limits, and the tf frames\n"
     "  run       simulate ~60 s on the bundled floor plan, replay it with global\n"
     "            initialization and print the summary (what `make run` calls)\n\n"
     "`mote COMMAND --help` lists each command's flags with units and defaults.\n";
@@ -31,6 +33,7 @@ int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "kidnap") return mote::tool::kidnap_command(rest);
   if (command == "crowd") return mote::tool::crowd_command(rest);
   if (command == "run") return mote::tool::run_command(rest);
+  if (command == "info") return mote::tool::info_command(rest);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kHelp;
     return 0;

@@ -11,9 +11,11 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 20> kFlags{{
+constexpr std::array<FlagSpec, 24> kFlags{{
     {"map", "MAP.yaml", "map_server map (required)"},
-    {"log", "LOG", "recorded log: CARMEN .clf/.log or ROS 1 .bag (required)"},
+    {"log", "LOG",
+     "recorded log: CARMEN .clf/.log, ROS 1 .bag, or ROS 2 (rosbag2 folder, .mcap, .db3) "
+     "(required)"},
     {"out", "DIR", "output folder, created if missing (required)"},
     {"reference", "REF.tum", "reference trajectory (TUM); enables accuracy figures"},
     {"config", "CONFIG.yaml", "LocalizerConfig YAML (flat amcl names or nav2 params)"},
@@ -35,6 +37,12 @@ constexpr std::array<FlagSpec, 20> kFlags{{
     {"laser-max-range", "M",
      "m, the laser's no-return reading for CARMEN FLASER logs, which do not record it, and the "
      "config's laser_max_range (default: inferred from the log's first scans)"},
+    {"scan-topic", "TOPIC",
+     "ROS bags: the sensor_msgs LaserScan topic (default: the only one; ROS 1: the first)"},
+    {"odom-topic", "TOPIC",
+     "ROS bags: the nav_msgs Odometry topic (default: the only one; none: odom -> base on tf)"},
+    {"odom-frame", "FRAME", "ROS bags: odometry frame when odometry comes from tf (default odom)"},
+    {"base-frame", "FRAME", "ROS bags: robot base frame (default: the odometry's child frame)"},
     {"lenient", "", "skip malformed log records (counted in the report) instead of failing"},
     {"quiet", "", "no summary table on stdout"},
     {"profile", "",
@@ -117,6 +125,10 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
     o.kidnapped_at = *at;
   }
   o.reader.lenient = args.has("lenient");
+  if (auto t = args.text("scan-topic")) o.reader.scan_topic = *t;
+  if (auto t = args.text("odom-topic")) o.reader.odom_topic = *t;
+  if (auto f = args.text("odom-frame")) o.reader.odom_frame = *f;
+  if (auto f = args.text("base-frame")) o.reader.base_frame = *f;
   if (args.has("nav2-defaults")) {
     if (args.text("config")) {
       throw args.error("nav2-defaults",
@@ -159,6 +171,8 @@ int replay_command(std::span<char* const> words) {
   const std::filesystem::path out = args.required("out");
   const replay::ReportOptions report{.profile = args.has("profile")};
   const replay::ReplayResult result = replay_and_report(replay_options(args), out, report);
+  for (const std::string& w : result.reader.warnings)
+    std::cerr << "mote replay: warning: " << w << '\n';
   if (!args.has("quiet")) {
     replay::print_summary(std::cout, result, report);
     std::cout << "  outputs               " << out.string() << '\n';

@@ -101,6 +101,7 @@ struct ReplayResult {
   std::optional<KidnapRecovery> kidnap;    ///< with a reference and kidnapped_at
   std::vector<Pose2> final_particles;      ///< the particle cloud after the last scan
   double wall_s = 0.0;                     ///< s, wall-clock time of the whole loop
+  double read_s = 0.0;                     ///< s of wall_s spent in the log reader's next()
 };
 
 /// Loads the map, log and reference, runs the filter over every scan and measures the result.

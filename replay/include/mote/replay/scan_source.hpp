@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mote/core/pose.hpp"
 #include "mote/core/scan.hpp"
@@ -28,6 +29,9 @@ struct ReadStats {
   std::size_t records_skipped = 0;  ///< malformed records skipped (lenient mode only)
   std::size_t bytes_skipped = 0;    ///< bytes of input in skipped records, or after a stop
   std::string first_error;          ///< message of the first malformed record, empty if none
+  /// Problems that did not stop the read, one line each ("FILE: PLACE: PROBLEM"): an MCAP file
+  /// cut short while recording is read up to its last complete record.
+  std::vector<std::string> warnings;
 };
 
 /// The FLASER/RLASER maximum range used when a log gives nothing to infer it from, m: SICK LMS
@@ -43,13 +47,17 @@ struct ReaderOptions {
   /// nullopt: inferred from the log's first 200 moving scans (NoReturnEstimator, no_return.hpp),
   /// which the reader holds back until then: still one pass over the file.
   std::optional<float> carmen_max_range;
-  /// ROS bag: topic of sensor_msgs/LaserScan; empty = the first connection of that type.
+  /// ROS bag: topic of sensor_msgs/LaserScan; empty = the first connection of that type (ROS 1)
+  /// or the only such topic (ROS 2; several are an InputError listing them).
   std::string scan_topic;
-  /// ROS bag: topic of nav_msgs/Odometry; empty = the first connection of that type, or, when
-  /// the bag has none, the tf transform odom_frame -> base.
+  /// ROS bag: topic of nav_msgs/Odometry; empty = the first connection of that type (ROS 1) or
+  /// the only one (ROS 2), or, when the bag has none, the tf transform odom_frame -> base.
   std::string odom_topic;
   /// ROS bag: the odometry frame used when odometry comes from tf.
   std::string odom_frame = "odom";
+  /// ROS bag: the robot's base frame; empty = the child frame of the odometry (the topic's
+  /// child_frame_id, or the child of odom_frame on tf).
+  std::string base_frame;
   /// ROS bag: largest chunk (uncompressed) a reader agrees to allocate, bytes.
   std::size_t max_chunk_bytes = std::size_t{128} << 20U;
 };
@@ -77,7 +85,13 @@ class ScanSource {
 [[nodiscard]] std::unique_ptr<ScanSource> open_ros_bag(const std::filesystem::path& path,
                                                        const ReaderOptions& options = {});
 
-/// Opens a log by its extension: .clf/.log -> CARMEN, .bag -> ROS 1 bag; else InputError.
+/// Opens a ROS 2 recording: a rosbag2 folder (metadata.yaml and its sqlite3 or MCAP storage
+/// files, in order), a lone .mcap file or a lone .db3 file. Throws InputError.
+[[nodiscard]] std::unique_ptr<ScanSource> open_ros2_bag(const std::filesystem::path& path,
+                                                        const ReaderOptions& options = {});
+
+/// Opens a log by its extension: .clf/.log -> CARMEN, .bag -> ROS 1 bag, .mcap/.db3 or a folder
+/// with metadata.yaml -> ROS 2; else InputError.
 [[nodiscard]] std::unique_ptr<ScanSource> open_scan_log(const std::filesystem::path& path,
                                                         const ReaderOptions& options = {});
 
