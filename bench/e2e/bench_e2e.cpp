@@ -150,7 +150,9 @@ double bytes_per_particle(int particles) {
 void set_counters(benchmark::State& state, const Case& c, const Totals& t) {
   using benchmark::Counter;
   const auto iters = static_cast<double>(state.iterations());
-  const double per_particle = 1e6 / (iters * c.particles);  // ms summed -> ns per particle
+  // ms summed -> ns per weighed particle (the KLD cases weigh fewer than n).
+  const double weighed = t.particle_beams / c.beams;
+  const double per_particle = weighed > 0.0 ? 1e6 / weighed : 0.0;
   state.counters["updates/s"] = Counter(iters, Counter::kIsRate);
   // particle_beams/s: particles x beams weighed over the Localizer's own update time (the sum of
   // UpdateStats::ms.total), the definition report.json's particle_beams_per_s uses too.
