@@ -4,6 +4,7 @@
 BUILD       ?= build
 JOBS        ?= $(shell nproc)
 CMAKE_FLAGS ?=
+CTEST_ARGS  ?=
 FUZZ_SECONDS ?= 30
 
 .PHONY: all deps configure build run test bench fuzz tsan clean
@@ -23,9 +24,10 @@ run: build
 	$(BUILD)/replay/mote run
 
 test: build
-	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
-# `make bench`: a Release build with -march=native in build-bench/, every benchmark suite with
+# `make bench`: the default (portable, run-time dispatched) Release build in build-bench/
+# (CMAKE_FLAGS=-DMOTE_NATIVE=ON for -march=native), every benchmark suite with
 # medians of 3 repetitions into bench/results/<suite>.json, then bench/plot.py writes the
 # end-to-end table (e2e.md) and plot (e2e.png). BENCH_FILTER (a regex) runs a subset.
 BENCH_BUILD  ?= build-bench
@@ -37,7 +39,7 @@ BENCH_OUT    := bench/results
 BENCH_PYTHON ?= $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 
 bench: deps
-	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DMOTE_NATIVE=ON $(CMAKE_FLAGS)
+	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 	cmake --build $(BENCH_BUILD) -j $(JOBS) --target $(BENCH_SUITES)
 	mkdir -p $(BENCH_OUT)
 	uptime > $(BENCH_OUT)/uptime.txt

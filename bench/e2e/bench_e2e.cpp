@@ -1,7 +1,8 @@
 // End-to-end benchmark (issue 7): one full Localizer::update() per iteration (motion, sensor,
 // normalize, resample, estimate) on a real map, with the odometry and scan of a simulated drive.
-// The particle count is fixed per case (min = max, so KLD never changes it) and every update
-// resamples (ESS fraction 1), so each case measures the phases its name says.
+// The particle count is fixed per case (min = max, so KLD never changes it) except in the
+// "/kld_min:" cases (KLD-adaptive between 500 and n), and every update resamples (ESS fraction
+// 1), so each case measures the phases its name says.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
@@ -27,6 +28,7 @@ LocalizerConfig config_for(const Case& c) {
   LocalizerConfig config = c.nav2 ? nav2_defaults() : LocalizerConfig{};
   config.laser_model_type = c.model;
   config.min_particles = config.max_particles = c.particles;
+  if (c.kld_min > 0) config.min_particles = c.kld_min;
   config.threads = c.threads;
   config.max_beams = kMaxBeams;
   config.update_min_d = config.update_min_a = 0.0;  // every frame of the drive updates
@@ -42,6 +44,7 @@ struct FilterSlot {
   int particles = 0;
   int threads = 0;
   bool nav2 = false;
+  int kld_min = 0;
   std::unique_ptr<Localizer> filter;
   bool tracking = false;  // particles follow the drive; k is the last frame's update index
   std::uint64_t k = 0;
@@ -49,13 +52,14 @@ struct FilterSlot {
 
 void use_filter(FilterSlot& slot, const Case& c) {
   if (!slot.filter || slot.model != c.model || slot.particles != c.particles ||
-      slot.threads != c.threads || slot.nav2 != c.nav2) {
+      slot.threads != c.threads || slot.nav2 != c.nav2 || slot.kld_min != c.kld_min) {
     slot.filter.reset();  // free the old particle set before allocating the new one
     slot.filter = std::make_unique<Localizer>(world().map, config_for(c));
     slot.model = c.model;
     slot.particles = c.particles;
     slot.threads = c.threads;
     slot.nav2 = c.nav2;
+    slot.kld_min = c.kld_min;
     slot.tracking = false;
     slot.k = 0;
   }
@@ -75,6 +79,7 @@ void start_tracking(FilterSlot& slot, int beams) {
 struct Totals {
   PhaseTimes ms;
   double particle_beams = 0.0;
+  double particles = 0.0;  // after each update: what KLD chose in the adaptive cases
   double resampled = 0.0;
   double tempering_trials = 0.0;
   std::string failure;  // set when an update did not run the full filter
@@ -86,6 +91,8 @@ struct Totals {
     ms.normalize += s.ms.normalize;
     ms.resample += s.ms.resample;
     ms.estimate += s.ms.estimate;
+    ms.total += s.ms.total;
+    particles += static_cast<double>(s.particles);
     particle_beams += static_cast<double>(s.weighed) * static_cast<double>(s.beams);
     resampled += s.resampled ? 1.0 : 0.0;
     tempering_trials += s.tempering_trials;
@@ -124,25 +131,38 @@ void run_global(benchmark::State& state, FilterSlot& slot, const Case& c, Totals
   }
 }
 
-// Both particle buffers (x, y, theta, log-weight floats) and the two 64-bit resampling scratch
-// columns of capacity + 1 entries (particles.hpp), per particle.
+// Per particle: both particle buffers (x, y, theta, log-weight floats) and the two 64-bit
+// resampling scratch columns of capacity + 1 entries (particles.hpp), the Localizer's untempered
+// log-likelihood column (a float per padded particle), and the estimate's summarizer (a float
+// weight, a 64-bit bin key and a 32-bit bin number per particle: 16 bytes).
 double bytes_per_particle(int particles) {
   ParticleStore store;
   store.reserve(static_cast<std::size_t>(particles));
   const auto cap = static_cast<double>(store.capacity());
-  return (2.0 * 4.0 * sizeof(float) * cap + 2.0 * sizeof(std::uint64_t) * (cap + 1.0)) / particles;
+  const double store_bytes =
+      2.0 * 4.0 * sizeof(float) * cap + 2.0 * sizeof(std::uint64_t) * (cap + 1.0);
+  const double loglik = sizeof(float) * static_cast<double>(pad_particles(store.capacity()));
+  const double summarizer = (sizeof(float) + sizeof(std::uint64_t) + sizeof(std::uint32_t)) *
+                            static_cast<double>(particles);
+  return (store_bytes + loglik + summarizer) / particles;
 }
 
 void set_counters(benchmark::State& state, const Case& c, const Totals& t) {
   using benchmark::Counter;
   const auto iters = static_cast<double>(state.iterations());
-  const double per_particle = 1e6 / (iters * c.particles);  // ms summed -> ns per particle
+  // ms summed -> ns per weighed particle (the KLD cases weigh fewer than n).
+  const double weighed = t.particle_beams / c.beams;
+  const double per_particle = weighed > 0.0 ? 1e6 / weighed : 0.0;
   state.counters["updates/s"] = Counter(iters, Counter::kIsRate);
-  state.counters["particle_beams/s"] = Counter(t.particle_beams, Counter::kIsRate);
+  // particle_beams/s: particles x beams weighed over the Localizer's own update time (the sum of
+  // UpdateStats::ms.total), the definition report.json's particle_beams_per_s uses too.
+  const double update_s = t.ms.total * 1e-3;
+  state.counters["particle_beams/s"] = update_s > 0.0 ? t.particle_beams / update_s : 0.0;
   // The beam model casts one ray per particle and beam (Thrun table 6.1).
   if (c.model == LaserModel::kBeam) {
-    state.counters["rays/s"] = Counter(t.particle_beams, Counter::kIsRate);
+    state.counters["rays/s"] = update_s > 0.0 ? t.particle_beams / update_s : 0.0;
   }
+  state.counters["particles"] = t.particles / iters;
   state.counters["ns_motion/p"] = t.ms.motion * per_particle;
   state.counters["ns_sensor/p"] = t.ms.sensor * per_particle;
   // Normalization with the tempering search (its ESS trials, counted below) and the scan fit.
@@ -188,6 +208,12 @@ int main(int argc, char** argv) {
   for (const mote::bench::Case& c : mote::bench::nav2_baseline_cases()) {
     const std::string name = c.name() + (c.nav2 ? "" : "/defaults:mote");
     benchmark::RegisterBenchmark(name.c_str(), mote::bench::BM_Localizer_Update, c)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  // KLD-adaptive twins of the headline cases (min 500 particles, max n).
+  for (const mote::bench::Case& c : mote::bench::kld_cases()) {
+    benchmark::RegisterBenchmark(c.name().c_str(), mote::bench::BM_Localizer_Update, c)
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }

@@ -26,7 +26,8 @@ bool too_slow(const Case& c) {
 std::string Case::name() const {
   return std::string("BM_Localizer_Update/") + model_name(model) + "/" + setting_name(setting) +
          "/n:" + std::to_string(particles) + "/beams:" + std::to_string(beams) +
-         "/threads:" + std::to_string(threads) + (nav2 ? "/defaults:nav2" : "");
+         "/threads:" + std::to_string(threads) + (nav2 ? "/defaults:nav2" : "") +
+         (kld_min > 0 ? "/kld_min:" + std::to_string(kld_min) : "");
 }
 
 std::vector<Case> all_cases() {
@@ -55,6 +56,19 @@ std::vector<Case> nav2_baseline_cases() {
       }
     }
   }
+  return cases;
+}
+
+std::vector<Case> kld_cases() {
+  std::vector<Case> cases;
+  const auto add = [&](LaserModel model, int particles) {
+    for (const Setting setting : {Setting::kTracking, Setting::kGlobal}) {
+      cases.push_back({model, setting, particles, 60, 2, false, 500});
+    }
+  };
+  add(LaserModel::kLikelihoodField, 100'000);
+  add(LaserModel::kLikelihoodField, 1'000'000);
+  add(LaserModel::kBeam, 10'000);
   return cases;
 }
 

@@ -27,9 +27,13 @@ struct Case {
   /// nav2_defaults() instead of mote's (fixed tempering 1, no recovery, fixed odometry
   /// noise): the baseline the adaptive mechanisms' cost is read against, in the same run.
   bool nav2 = false;
+  /// 0: the particle count is fixed at `particles` (KLD cannot change it). Otherwise
+  /// KLD-adaptive: min_particles = kld_min, max_particles = particles.
+  int kld_min = 0;
 
   /// "BM_Localizer_Update/<model>/<setting>/n:<particles>/beams:<beams>/threads:<threads>",
-  /// with "/defaults:nav2" appended for the nav2 baseline.
+  /// with "/defaults:nav2" appended for the nav2 baseline and "/kld_min:<kld_min>" for the
+  /// KLD-adaptive cases (n is then max_particles).
   [[nodiscard]] std::string name() const;
 };
 
@@ -40,5 +44,9 @@ struct Case {
 /// The nav2-defaults twins of the tracking cases at 10k and 100k particles, 60 beams,
 /// 2 threads, for both models.
 [[nodiscard]] std::vector<Case> nav2_baseline_cases();
+
+/// KLD-adaptive twins (min 500, max n) of the headline cases, 60 beams, 2 threads: likelihood
+/// field 100k and 1M, beam model 10k, tracking and global.
+[[nodiscard]] std::vector<Case> kld_cases();
 
 }  // namespace mote::bench

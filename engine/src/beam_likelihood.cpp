@@ -1,6 +1,8 @@
 // The beam model's scan likelihood over cast expected ranges (Thrun et al., table 6.1), batched:
 // what depends on a beam's reading alone is computed once per beam, then the loop runs
-// beam-outer over blocks of particles, vectorized over the particles of a block.
+// beam-outer over blocks of particles, vectorized over the particles of a block. The block loop
+// is compiled per instruction set and dispatched (isa_target.hpp): everything it calls is
+// always inlined into it.
 #include "beam_likelihood.hpp"
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "isa_target.hpp"
 #include "mote/core/error.hpp"
 #include "mote/engine/beam_model.hpp"
 
@@ -91,14 +94,15 @@ struct Block {
 
 // z* of beam b for the block's particles (a strided gather from the block's rows of the
 // particle-major array), padded with z_max / 2, a valid range.
-void gather_beam(const float* expected, std::size_t beams, std::size_t b, float range_max,
-                 Block& block) {
+MOTE_ALWAYS_INLINE void gather_beam(const float* expected, std::size_t beams, std::size_t b,
+                                    float range_max, Block& block) {
   for (std::size_t k = 0; k < block.count; ++k) block.z_star[k] = expected[k * beams + b];
   std::fill(block.z_star + block.count, block.z_star + block.lanes, 0.5F * range_max);
 }
 
 // Which tails of eq. 6.6's normalizer this beam's z* need (see detail::Tails).
-detail::Tails tails_needed(const detail::BeamTerms& t, const float* z_star, std::size_t lanes) {
+MOTE_ALWAYS_INLINE detail::Tails tails_needed(const detail::BeamTerms& t, const float* z_star,
+                                              std::size_t lanes) {
   std::int32_t near_an_end = 0;
   for (std::size_t k = 0; k < lanes; ++k) {
     const bool inside = (z_star[k] > t.tail_low) & (z_star[k] < t.tail_high);
@@ -111,8 +115,8 @@ detail::Tails tails_needed(const detail::BeamTerms& t, const float* z_star, std:
 // Adds the float mixture's log to every lane in its domain and flags the others in exact.
 // Branch-free: the loop vectorizes. The terms come by value so that no store can alias them.
 template <detail::Tails kTails>
-void add_float_lanes(const detail::BeamTerms t, const float* z_star, double* sum,
-                     std::int32_t* exact, std::size_t lanes) {
+MOTE_ALWAYS_INLINE void add_float_lanes(const detail::BeamTerms t, const float* z_star, double* sum,
+                                        std::int32_t* exact, std::size_t lanes) {
   for (std::size_t k = 0; k < lanes; ++k) {
     const bool in_range = z_star[k] >= 0.0F && z_star[k] <= t.range_max;  // false for NaN
     const float mixture = detail::beam_mixture<kTails>(t, in_range ? z_star[k] : 0.0F);
@@ -123,7 +127,7 @@ void add_float_lanes(const detail::BeamTerms t, const float* z_star, double* sum
 }
 
 // The float path for one beam; returns whether any lane was flagged for the exact formula.
-bool add_float_lanes(const detail::BeamTerms& t, Block& block) {
+MOTE_ALWAYS_INLINE bool add_float_lanes(const detail::BeamTerms& t, Block& block) {
   const float* z_star = block.z_star;
   switch (tails_needed(t, z_star, block.lanes)) {
     case detail::Tails::kNone:
@@ -142,13 +146,15 @@ bool add_float_lanes(const detail::BeamTerms& t, Block& block) {
   return flagged != 0;
 }
 
-void add_exact_lanes(float z, float range_max, const MixtureParams& p, Block& block) {
+MOTE_ALWAYS_INLINE void add_exact_lanes(float z, float range_max, const MixtureParams& p,
+                                        Block& block) {
   for (std::size_t k = 0; k < block.lanes; ++k) {
     if (block.exact[k] != 0) block.sum[k] += beam_log_likelihood(z, block.z_star[k], range_max, p);
   }
 }
 
-void add_beam(const BeamPlan& plan, float range_max, const MixtureParams& p, Block& block) {
+MOTE_ALWAYS_INLINE void add_beam(const BeamPlan& plan, float range_max, const MixtureParams& p,
+                                 Block& block) {
   switch (plan.kind) {
     case BeamPlan::Kind::kConstant:
       for (std::size_t k = 0; k < block.lanes; ++k) block.sum[k] += plan.constant;
@@ -163,8 +169,9 @@ void add_beam(const BeamPlan& plan, float range_max, const MixtureParams& p, Blo
   }
 }
 
-void weigh_block(const std::vector<BeamPlan>& plans, float range_max, const float* expected,
-                 const BeamModelParams& params, float* logw, std::size_t count) {
+MOTE_ALWAYS_INLINE void weigh_block(const std::vector<BeamPlan>& plans, float range_max,
+                                    const float* expected, const BeamModelParams& params,
+                                    float* logw, std::size_t count) {
   Block block;
   block.count = count;
   block.lanes = pad_particles(count);
@@ -177,6 +184,11 @@ void weigh_block(const std::vector<BeamPlan>& plans, float range_max, const floa
     logw[k] += static_cast<float>(params.tempering * block.sum[k]);
   }
 }
+
+MOTE_ISA_VARIANTS(weigh_block, weigh_block,
+                  (const std::vector<BeamPlan>& plans, float range_max, const float* expected,
+                   const BeamModelParams& params, float* logw, std::size_t count),
+                  (plans, range_max, expected, params, logw, count))
 
 }  // namespace
 
@@ -191,10 +203,12 @@ void add_beam_log_likelihoods(std::span<const float> ranges, float range_max,
   std::vector<BeamPlan> plans;
   plans.reserve(ranges.size());
   for (const float z : ranges) plans.push_back(plan_beam(z, range_max, params.mixture));
+  static const auto kernel =
+      detail::pick_variant(&weigh_block_generic, &weigh_block_avx2, &weigh_block_avx512);
   for (std::size_t first = 0; first < logw.size(); first += kBlock) {
     const std::size_t count = std::min(kBlock, logw.size() - first);
-    weigh_block(plans, range_max, expected.data() + first * ranges.size(), params,
-                logw.data() + first, count);
+    kernel(plans, range_max, expected.data() + first * ranges.size(), params, logw.data() + first,
+           count);
   }
 }
 

@@ -6,7 +6,6 @@
 
 #include "likelihood_gather.hpp"
 #include "mote/core/error.hpp"
-#include "mote/engine/fast_math.hpp"
 
 namespace mote {
 
@@ -14,7 +13,7 @@ namespace {
 
 // Particles handled together: their accumulators and sin/cos stay in L1 while every beam
 // streams over them (the loop over particles is the vectorized one).
-constexpr std::size_t kBlock = 256;
+constexpr std::size_t kBlock = detail::kLikelihoodBlock;
 
 DistanceFieldOptions field_options(const LikelihoodFieldParams& p) {
   if (!(p.max_distance > 0.0)) {
@@ -99,29 +98,9 @@ void LikelihoodFieldModel::weigh_block(const float* endpoint_x, const float* end
   // Padding lanes past the last particle are computed and dropped (particles.hpp allows it),
   // so every particle takes the vector path when chunks start at multiples of the padding.
   const std::size_t lanes = std::min(pad_particles(count), particles.padded_size() - begin);
-  const LikelihoodView table = table_->view();
-  const TableTransform& t = table.transform;
-  // Each particle's pose in table cells: position (col0, row0) and heading rotated by the map
-  // yaw and scaled to cells (c, s), so an endpoint costs 4 multiply-adds, 4 clamps and a gather.
-  alignas(64) float col0[kBlock];
-  alignas(64) float row0[kBlock];
-  alignas(64) float c[kBlock];
-  alignas(64) float s[kBlock];
   alignas(64) float sum[kBlock];
-  for (std::size_t k = 0; k < lanes; ++k) {
-    const float dx = particles.x[begin + k] - t.origin_x;
-    const float dy = particles.y[begin + k] - t.origin_y;
-    col0[k] = (t.cos_yaw * dx + t.sin_yaw * dy) * t.inv_resolution + t.border;
-    row0[k] = (t.cos_yaw * dy - t.sin_yaw * dx) * t.inv_resolution + t.border;
-    const SinCos sc = fast_sin_cos(particles.theta[begin + k]);
-    c[k] = (sc.cos * t.cos_yaw + sc.sin * t.sin_yaw) * t.inv_resolution;
-    s[k] = (sc.sin * t.cos_yaw - sc.cos * t.sin_yaw) * t.inv_resolution;
-    sum[k] = 0.0F;
-  }
-  const detail::TablePoses poses{col0, row0, c, s};
-  for (std::size_t b = 0; b < beams; ++b) {
-    detail::add_beam_likelihood(table, poses, endpoint_x[b], endpoint_y[b], sum, lanes);
-  }
+  detail::likelihood_block_sums(table_->view(), particles, begin, lanes,
+                                {endpoint_x, endpoint_y, beams}, sum);
   const auto tau = static_cast<float>(params_.tempering);
   const bool cubed = params_.combination == LikelihoodCombination::kAmclCubedSum;
   for (std::size_t k = 0; k < count; ++k) {

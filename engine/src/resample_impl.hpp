@@ -14,7 +14,6 @@
 #include <cstdint>
 
 #include "mote/core/parallel.hpp"
-#include "mote/engine/fast_math.hpp"
 #include "mote/engine/philox.hpp"
 
 namespace mote::detail {
@@ -30,15 +29,21 @@ struct FixedWeights {
   [[nodiscard]] std::uint64_t q(std::size_t i) const { return c[i + 1] - c[i]; }
 };
 
+// out[i] = floor(exp(logw[i]) * scale) for i in [begin, end): the fixed-point weights, compiled
+// per instruction set (fixed_point.cpp).
+void fixed_point_block(const float* logw, double scale, std::uint64_t* out, std::size_t begin,
+                       std::size_t end);
+
 template <class S>
 FixedWeights fixed_point_weights(S& store, std::size_t n_out, std::size_t grain) {
   const float* logw = store.log_weights();
   const std::size_t n = store.size();
   std::uint64_t* c = store.scratch(1);
   const double scale = static_cast<double>(n_out) * static_cast<double>(kOne);
-  const std::uint64_t total = par::exclusive_scan<std::uint64_t>(n, grain, c, [&](std::size_t i) {
-    return static_cast<std::uint64_t>(static_cast<double>(fast_exp(logw[i])) * scale);
-  });
+  const std::uint64_t total = par::exclusive_scan_filled<std::uint64_t>(
+      n, grain, c, [&](std::size_t begin, std::size_t end, std::uint64_t* out) {
+        fixed_point_block(logw, scale, out, begin, end);
+      });
   c[n] = total;
   return {c, total};
 }

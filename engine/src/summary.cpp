@@ -16,6 +16,7 @@
 #include <limits>
 
 #include "cluster_labels.hpp"
+#include "isa_target.hpp"
 #include "moments.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/engine/estimate.hpp"
@@ -49,13 +50,13 @@ float max_log_weight(const ConstParticleView& p) {
 
 // Weight relative to the largest, so an unnormalized set does not overflow; NaN weighs 0
 // (fast_exp(-inf) is exactly 0). A select on the argument, not a branch: the loop vectorizes.
-float relative_weight(float logw, float max_logw) {
+MOTE_ALWAYS_INLINE float relative_weight(float logw, float max_logw) {
   return fast_exp(logw == logw ? logw - max_logw : -std::numeric_limits<float>::infinity());
 }
 
 // v where keep, else +0.0, through a bit mask: a ?: on doubles keeps GCC 12 from vectorizing
 // the moment loops.
-double masked(double v, bool keep) {
+MOTE_ALWAYS_INLINE double masked(double v, bool keep) {
   const std::uint64_t mask = keep ? ~std::uint64_t{0} : std::uint64_t{0};
   return std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) & mask);
 }
@@ -66,7 +67,7 @@ double masked(double v, bool keep) {
 constexpr std::size_t kLanes = 16;
 
 template <std::size_t kSums, class Terms>
-std::array<double, kSums> lane_sums(std::size_t count, const Terms& terms) {
+MOTE_ALWAYS_INLINE std::array<double, kSums> lane_sums(std::size_t count, const Terms& terms) {
   double acc[kSums][kLanes] = {};
   std::size_t k = 0;
   for (; k + kLanes <= count; k += kLanes) {
@@ -81,8 +82,8 @@ std::array<double, kSums> lane_sums(std::size_t count, const Terms& terms) {
 }
 
 // First moments of particles [begin, end) (end - begin <= kSumBlock) with weights w.
-FirstMoments first_moments(const ConstParticleView& p, const float* w, std::size_t begin,
-                           std::size_t end) {
+MOTE_ALWAYS_INLINE FirstMoments first_moments(const ConstParticleView& p, const float* w,
+                                              std::size_t begin, std::size_t end) {
   alignas(64) float cos_t[kSumBlock];
   alignas(64) float sin_t[kSumBlock];
   const std::size_t count = end - begin;
@@ -112,8 +113,9 @@ FirstMoments first_moments(const ConstParticleView& p, const float* w, std::size
 }
 
 // Second moments about `mean` of particles [begin, end) with weights w.
-SecondMoments second_moments(const ConstParticleView& p, const float* w, const Pose2& mean,
-                             std::size_t begin, std::size_t end) {
+MOTE_ALWAYS_INLINE SecondMoments second_moments(const ConstParticleView& p, const float* w,
+                                                const Pose2& mean, std::size_t begin,
+                                                std::size_t end) {
   const float* x = p.x + begin;
   const float* y = p.y + begin;
   const float* theta = p.theta + begin;
@@ -134,6 +136,34 @@ SecondMoments second_moments(const ConstParticleView& p, const float* w, const P
   });
   return m;
 }
+
+// Pass 2's vector work for the block [begin, end): the weights, the bin keys when index is set,
+// and the first moments. Compiled per instruction set (isa_target.hpp).
+MOTE_ALWAYS_INLINE FirstMoments weigh_block(const ConstParticleView& p, float max_logw,
+                                            float* weight, const detail::BinIndex* index,
+                                            std::uint64_t* keys, std::size_t begin,
+                                            std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) weight[i] = relative_weight(p.logw[i], max_logw);
+  if (index != nullptr) {
+    // Locals: a store through the uint64 key column could alias the index's int64 fields.
+    const detail::BinIndex bin_index = *index;
+    const float* x = p.x;
+    const float* y = p.y;
+    const float* theta = p.theta;
+    for (std::size_t i = begin; i < end; ++i) keys[i] = bin_index.key_of(x[i], y[i], theta[i]);
+  }
+  return first_moments(p, weight, begin, end);
+}
+
+MOTE_ISA_VARIANTS_RETURNING(FirstMoments, weigh_block, weigh_block,
+                            (const ConstParticleView& p, float max_logw, float* weight,
+                             const detail::BinIndex* index, std::uint64_t* keys, std::size_t begin,
+                             std::size_t end),
+                            (p, max_logw, weight, index, keys, begin, end))
+MOTE_ISA_VARIANTS_RETURNING(SecondMoments, second_moments, second_moments,
+                            (const ConstParticleView& p, const float* w, const Pose2& mean,
+                             std::size_t begin, std::size_t end),
+                            (p, w, mean, begin, end))
 
 template <class Moments>
 std::vector<Moments> add_vectors(std::vector<Moments> a, const std::vector<Moments>& b) {
@@ -177,24 +207,16 @@ struct PoseSummarizer::State {
 
 FirstMoments PoseSummarizer::State::weigh_and_key(const ConstParticleView& p, float max_logw,
                                                   bool with_keys) {
+  static const auto kernel =
+      detail::pick_variant(&weigh_block_generic, &weigh_block_avx2, &weigh_block_avx512);
   return par::reduce(
       p.size(), kSumBlock, FirstMoments{},
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) weight[i] = relative_weight(p.logw[i], max_logw);
-        if (with_keys) {
-          // Locals: a store through the uint64 key column could alias the index's int64 fields.
-          const detail::BinIndex bin_index = index;
-          std::uint64_t* keys = key.data();
-          const float* x = p.x;
-          const float* y = p.y;
-          const float* theta = p.theta;
-          for (std::size_t i = begin; i < end; ++i) {
-            keys[i] = bin_index.key_of(x[i], y[i], theta[i]);
-          }
-          number_block(begin, end);
-        }
-        return first_moments(p, weight.data(), begin, end);
+        const FirstMoments m = kernel(p, max_logw, weight.data(), with_keys ? &index : nullptr,
+                                      key.data(), begin, end);
+        if (with_keys) number_block(begin, end);
+        return m;
       },
       /*join=*/[](const FirstMoments& a, const FirstMoments& b) { return a + b; });
 }
@@ -276,11 +298,13 @@ std::vector<SecondMoments> PoseSummarizer::State::cluster_second(const ConstPart
 }
 
 SecondMoments PoseSummarizer::State::overall_second(const ConstParticleView& p) const {
+  static const auto kernel =
+      detail::pick_variant(&second_moments_generic, &second_moments_avx2, &second_moments_avx512);
   return par::reduce(
       p.size(), kSumBlock, SecondMoments{},
       /*partial=*/
       [&](std::size_t begin, std::size_t end) {
-        return second_moments(p, weight.data(), out.overall.mean, begin, end);
+        return kernel(p, weight.data(), out.overall.mean, begin, end);
       },
       /*join=*/[](const SecondMoments& a, const SecondMoments& b) { return a + b; });
 }

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "mote/core/error.hpp"
+#include "mote/engine/isa.hpp"
 #include "mote/replay/map_image.hpp"
 #include "mote/replay/profile.hpp"
 #include "mote/replay/report_json.hpp"
@@ -197,7 +198,9 @@ RunFigures run_figures(const ReplayResult& result) {
   f.particles_mean = particles * inv;
   f.update_ms = summarize(std::move(totals));
   f.phase_mean_ms = scaled(sum, inv);
-  if (sum.sensor > 0.0) f.particle_beams_per_s = particle_beams / (sum.sensor * 1e-3);
+  // Particles x beams weighed per second of update time (UpdateStats::ms.total), as bench_e2e's
+  // particle_beams/s counter: the throughput of the whole filter, not of the sensor phase.
+  if (sum.total > 0.0) f.particle_beams_per_s = particle_beams / (sum.total * 1e-3);
   return f;
 }
 
@@ -208,6 +211,9 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   json.begin_object();
   json.member("updates", std::uint64_t{f.updates}).member("scans", std::uint64_t{result.scans});
   json.member("threads", result.threads);
+  // The kernel variant that ran (isa.hpp): results are bit-identical only within one variant.
+  json.member("isa", std::string(isa_name(active_isa())));
+  json.member("isa_detail", isa_description());
   json.member("model", model_name(result.config.laser_model_type));
   json.member("seed", std::uint64_t{result.config.seed});
   json.member("min_particles", result.config.min_particles);

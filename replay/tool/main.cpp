@@ -7,6 +7,7 @@
 #include "args.hpp"
 #include "commands.hpp"
 #include "mote/core/error.hpp"
+#include "mote/engine/isa.hpp"
 
 namespace {
 
@@ -25,7 +26,8 @@ constexpr std::string_view kHelp =
     "            beams, field of view and range limits, and the tf frames\n"
     "  run       simulate ~60 s on the bundled floor plan, replay it with global\n"
     "            initialization and print the summary (what `make run` calls)\n\n"
-    "`mote COMMAND --help` lists each command's flags with units and defaults.\n";
+    "`mote COMMAND --help` lists each command's flags with units and defaults;\n"
+    "`mote --version` prints the version and the kernel variant in use (MOTE_ISA).\n";
 
 int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "replay") return mote::tool::replay_command(rest);
@@ -34,6 +36,10 @@ int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "crowd") return mote::tool::crowd_command(rest);
   if (command == "run") return mote::tool::run_command(rest);
   if (command == "info") return mote::tool::info_command(rest);
+  if (command == "--version" || command == "version") {
+    std::cout << "mote " << MOTE_VERSION << "\nkernels: " << mote::isa_description() << '\n';
+    return 0;
+  }
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kHelp;
     return 0;

@@ -1,10 +1,21 @@
-# cmake -P script run by the install_and_consume test.
+# cmake -P script run by the install_and_consume test: installs mote, builds examples/consumer
+# against it with no -march or -m<isa> flag anywhere (design.md section 3, Portability), and runs
+# it with the dispatched kernels and again with MOTE_ISA=generic.
 function(run_step what)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
   endif()
   message(STATUS "${what}: ok\n${out}")
+endfunction()
+
+# Fails when text holds an instruction-set flag (-march=..., -mavx2, -mfma, ...).
+function(expect_no_isa_flags what text)
+  string(REGEX MATCH "-march=[^ \"]*|-m(avx|fma|sse|bmi)[^ \"]*" flag "${text}")
+  if(flag)
+    message(FATAL_ERROR "${what} carries ${flag}: the installed package must be portable")
+  endif()
+  message(STATUS "${what}: no -march or -m<isa> flag")
 endfunction()
 
 set(prefix ${WORK_DIR}/prefix)
@@ -16,8 +27,18 @@ if(SANITIZE)
 endif()
 
 run_step("install" ${CMAKE_COMMAND} --install ${MOTE_BINARY_DIR} --prefix ${prefix})
+file(GLOB_RECURSE exported ${prefix}/*/moteTargets*.cmake)
+foreach(file IN LISTS exported)
+  file(READ ${file} text)
+  expect_no_isa_flags("${file}" "${text}")
+endforeach()
 run_step("configure consumer" ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
          -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
-         -DCMAKE_CXX_FLAGS=${flags} -DCMAKE_EXE_LINKER_FLAGS=${flags})
+         -DCMAKE_CXX_FLAGS=${flags} -DCMAKE_EXE_LINKER_FLAGS=${flags}
+         -DCMAKE_EXPORT_COMPILE_COMMANDS=ON)
+file(READ ${WORK_DIR}/build/compile_commands.json commands)
+expect_no_isa_flags("consumer compile command" "${commands}")
 run_step("build consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run_step("run consumer" ${WORK_DIR}/build/consumer)
+run_step("run consumer, MOTE_ISA=generic" ${CMAKE_COMMAND} -E env MOTE_ISA=generic
+         ${WORK_DIR}/build/consumer)

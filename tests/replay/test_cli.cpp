@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -257,15 +258,19 @@ TEST(Cli, DisBagReplaysToTheEndAndSeedsAgree) {
 }
 
 // Issue 15: global localization on the Wean Hall log (a corridor whose doors look alike)
-// with mote's defaults ends at the same place for seeds 1-5 (within 0.3 m), in the doorway
-// of the cluttered room at the corridor's south end where the robot drove (map.png; the
-// place replay/configs/wean.yaml found for seeds 1-100 before the defaults adapted).
-// Measured: within 0.03 m, at (41.4, 40.3).
+// with mote's defaults ends in the doorway of the cluttered room at the corridor's south end
+// where the robot drove (map.png), at (41.45, 40.28). A seed sometimes takes a look-alike door
+// instead, and which seeds do changes with the last bits of the arithmetic: seeds 1-40 missed
+// 2 times in 40 with MOTE_NATIVE, 2 with the portable build's avx2 variant and 4 with generic
+// (seed 4 of 1-5 under avx2, none of 1-5 in the other two). So the test holds a rate, not a
+// seed: at least 8 of seeds 1-10 end within 0.5 m of that place (a filter converging 95% of
+// the time passes 99% of builds; one converging half the time fails 95%), and the seeds that do
+// end there agree within 0.3 m.
 TEST(Cli, WeanGlobalLocalizationSeedsAgree) {
   MOTE_REQUIRE_DATA(yaml, "wean/wean_map.yaml");
   const fs::path dir = scratch("wean");
-  std::vector<std::array<double, 2>> ends;
-  for (const int seed : {1, 2, 3, 4, 5}) {
+  std::vector<std::array<double, 2>> at_the_door;
+  for (int seed = 1; seed <= 10; ++seed) {
     const fs::path out = dir / ("seed" + std::to_string(seed));
     const Outcome o = mote("replay --map '" + yaml.string() + "' --log '" +
                            (yaml.parent_path() / "robotdata1.clf").string() + "' --out '" +
@@ -279,10 +284,14 @@ TEST(Cli, WeanGlobalLocalizationSeedsAgree) {
     std::array<double, 2> xy{};
     last >> stamp >> xy[0] >> xy[1];
     ASSERT_FALSE(last.fail()) << "seed " << seed << ": no end pose";
-    ends.push_back(xy);
+    if (std::hypot(xy[0] - 41.45, xy[1] - 40.28) < 0.5) {
+      at_the_door.push_back(xy);
+    } else {
+      std::cout << "seed " << seed << " ends at (" << xy[0] << ", " << xy[1] << ")\n";
+    }
   }
-  expect_within(ends, 0.3);
-  EXPECT_LT(std::hypot(ends[0][0] - 41.45, ends[0][1] - 40.28), 0.5);
+  EXPECT_GE(at_the_door.size(), 8U) << "of seeds 1-10 ended at (41.45, 40.28)";
+  expect_within(at_the_door, 0.3);
 }
 
 // Issue 15: tracking on the Intel log with mote's defaults (no config), 5000 particles: the

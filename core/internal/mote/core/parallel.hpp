@@ -131,24 +131,24 @@ template <class T, class Partial, class Join>
   return result;
 }
 
-/// Exclusive prefix sum of integers: out[i] = sum of value(j) for j < i; returns the total.
-/// value(i) is called once per element. Integer addition is associative, so the result equals
-/// the serial one exactly: block sums in parallel (out holds the values meanwhile), a serial
-/// scan of the block sums, then each block turns its values into prefix sums in parallel.
-template <class Int, class Value>
-Int exclusive_scan(std::size_t n, std::size_t grain, Int* out, const Value& value) {
+/// Exclusive prefix sum of integers whose values a block at a time writes: fill(begin, end, out)
+/// sets out[i] for i in [begin, end) (a vector kernel, say). out[i] = sum of the values before i;
+/// returns the total. Integer addition is associative, so the result equals the serial one
+/// exactly: block sums in parallel (out holds the values meanwhile), a serial scan of the block
+/// sums, then each block turns its values into prefix sums in parallel.
+template <class Int, class Fill>
+Int exclusive_scan_filled(std::size_t n, std::size_t grain, Int* out, const Fill& fill) {
   static_assert(std::is_integral_v<Int>, "scans are integer-only to stay exact");
   if (n == 0) return Int{0};
   const std::size_t step = aligned_grain(grain);
   std::vector<Int> block_start((n + step - 1) / step);
   for_each_chunk(n, step, [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; b += step) {
-      // Two loops: value() alone vectorizes; fused with the running sum it stayed scalar.
+      // Two loops: the values alone vectorize; fused with the running sum they stayed scalar.
       const std::size_t block_end = std::min(end, b + step);
-      Int* const block = out;
-      for (std::size_t i = b; i < block_end; ++i) block[i] = static_cast<Int>(value(i));
+      fill(b, block_end, out);
       Int sum{0};
-      for (std::size_t i = b; i < block_end; ++i) sum += block[i];
+      for (std::size_t i = b; i < block_end; ++i) sum += out[i];
       block_start[b / step] = sum;
     }
   });
@@ -167,6 +167,18 @@ Int exclusive_scan(std::size_t n, std::size_t grain, Int* out, const Value& valu
     }
   });
   return total;
+}
+
+/// Exclusive prefix sum of integers: out[i] = sum of value(j) for j < i; returns the total.
+/// value(i) is called once per element (exclusive_scan_filled says how).
+template <class Int, class Value>
+Int exclusive_scan(std::size_t n, std::size_t grain, Int* out, const Value& value) {
+  return exclusive_scan_filled<Int>(n, grain, out,
+                                    [&](std::size_t begin, std::size_t end, Int* block) {
+                                      for (std::size_t i = begin; i < end; ++i) {
+                                        block[i] = static_cast<Int>(value(i));
+                                      }
+                                    });
 }
 
 }  // namespace mote::par

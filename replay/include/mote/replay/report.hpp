@@ -17,7 +17,8 @@ struct RunFigures {
   double particles_mean = 0.0;  ///< mean particle count after those updates
   Percentiles update_ms;        ///< total update time, ms
   PhaseTimes phase_mean_ms;     ///< mean time of each phase, ms
-  /// Particle-beam likelihoods evaluated per second of sensor phase (the sensor model's rate).
+  /// Particles x beams weighed per second of update time (the sum of UpdateStats::ms.total),
+  /// the definition of bench_e2e's particle_beams/s counter.
   double particle_beams_per_s = 0.0;
 };
 
@@ -31,8 +32,8 @@ struct ReportOptions {
   bool profile = false;
 };
 
-/// Writes report.json's content: updates, scans, threads, model, particles_mean, update_ms
-/// {mean,p50,p99,max}, phase_ms, particle_beams_per_s, laser_max_range {m, source,
+/// Writes report.json's content: updates, scans, threads, isa, isa_detail, model, particles_mean,
+/// update_ms {mean,p50,p99,max}, phase_ms, particle_beams_per_s, laser_max_range {m, source,
 /// effective_m (after the config's laser_max_range)}, outcomes, reader stats, and with a
 /// reference ate_rmse_m, heading_rmse_deg and converged_at_s (null when never or undefined),
 /// and after a kidnapping "kidnap" {at, updates_after, within_m, hold, recovered,
