@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "mote/engine/localizer.hpp"
@@ -52,6 +53,16 @@ class BlockedBeams : public ::testing::Test {
     return c;
   }
 
+  // A Localizer started at kStart (5 cm, 2 degrees) that has weighed the scan there.
+  std::unique_ptr<Localizer> started(bool filter, test::ScanSimulator& sim) const {
+    auto localizer = std::make_unique<Localizer>(*map_, config(filter));
+    const Eigen::Matrix3d cov =
+        Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 2 * kDeg * 2 * kDeg).asDiagonal();
+    localizer->initialize(kStart, cov);
+    localizer->update(kStart, sim.scan_at(kStart));
+    return localizer;
+  }
+
   // Tracks from kStart for 10 clear updates, then `crowd_updates` crowded ones while the robot
   // keeps moving; returns the last position error, and the blocked and clearly short beam
   // counts of the crowded updates.
@@ -61,13 +72,10 @@ class BlockedBeams : public ::testing::Test {
     std::size_t clearly_short = 0;
   };
   Run track(bool filter, int crowd_updates) {
-    Localizer localizer(*map_, config(filter));
-    const Eigen::Matrix3d cov =
-        Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 2 * kDeg * 2 * kDeg).asDiagonal();
-    localizer.initialize(kStart, cov);
     test::ScanSimulator sim(*map_, 11);
+    const std::unique_ptr<Localizer> started_localizer = started(filter, sim);
+    Localizer& localizer = *started_localizer;
     Pose2 truth = kStart;
-    localizer.update(truth, sim.scan_at(truth));
     Run run;
     for (int k = 0; k < 10 + crowd_updates; ++k) {
       truth = sim.drive(truth, 0.1);
@@ -117,13 +125,10 @@ TEST_F(BlockedBeams, DiffuseBeliefKeepsEveryBeam) {
 }
 
 TEST_F(BlockedBeams, EveryBeamBlockedMeansMotionOnly) {
-  Localizer localizer(*map_, config(true));
-  const Eigen::Matrix3d cov =
-      Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 2 * kDeg * 2 * kDeg).asDiagonal();
-  localizer.initialize(kStart, cov);
   test::ScanSimulator sim(*map_, 3);
+  const std::unique_ptr<Localizer> started_localizer = started(true, sim);
+  Localizer& localizer = *started_localizer;
   Pose2 truth = kStart;
-  localizer.update(truth, sim.scan_at(truth));
   for (int k = 0; k < 5; ++k) {
     truth = sim.drive(truth, 0.1);
     localizer.update(truth, sim.scan_at(truth));

@@ -1,0 +1,203 @@
+// The mote tool on the shared recorded logs: accuracy with the shipped config and with the
+// defaults (issue 15's targets), global localization seeds, kidnapping and crowd recovery.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli_test_util.hpp"
+#include "mote_test/data.hpp"
+
+namespace mote_cli_test {
+namespace {
+
+// `mote replay --init global` of `log` on `yaml` with `seed` (and `flags`) into `out`.
+Outcome replay_global(const fs::path& yaml, const fs::path& log, const fs::path& out, int seed,
+                      const std::string& flags = "") {
+  return mote("replay --map '" + yaml.string() + "' --log '" + log.string() + "' --out '" +
+              out.string() + "' --init global --quiet --seed " + std::to_string(seed) + flags);
+}
+
+// Accuracy on the Intel lab log with the configuration the project ships for it
+// (replay/configs/intel.yaml explains each value), and bit-identical trajectories on 1 and 2
+// threads (design.md section 3, determinism).
+TEST(Cli, IntelReplayAccuracyAndThreadInvariance) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  const fs::path dir = scratch("intel");
+  const fs::path config = fs::path(MOTE_SOURCE_DIR) / "replay/configs/intel.yaml";
+  const std::string common = "replay --map '" + yaml.string() + "' --log '" +
+                             (data / "intel.clf").string() + "' --reference '" +
+                             (data / "intel.gt.tum").string() + "' --config '" + config.string() +
+                             "' --particles 5000 --model likelihood_field --quiet";
+  ASSERT_EQ(mote(common + " --threads 1 --out '" + (dir / "t1").string() + "'").status, 0);
+  ASSERT_EQ(mote(common + " --threads 2 --out '" + (dir / "t2").string() + "'").status, 0);
+  const std::string t1 = slurp(dir / "t1" / "trajectory.tum");
+  EXPECT_GT(lines(t1), 800);
+  EXPECT_EQ(t1, slurp(dir / "t2" / "trajectory.tum"));
+  const std::string report = slurp(dir / "t2" / "report.json");
+  // Issue 6: ATE RMSE at most 0.05 m, heading RMSE at most 1 degree.
+  EXPECT_LE(json_number(report, "ate_rmse_m"), 0.05);
+  EXPECT_LE(json_number(report, "heading_rmse_deg"), 1.0);
+}
+
+// The Sapienza DIS bag (ROS 1, LaserScan + Odometry + tf) replays to its last scan, and global
+// localization with mote's defaults (no config, no particle count) from seeds 1-5 ends at the
+// same place (issue 15: within 0.3 m): a bag read wrongly (frames, stamps, mounting transform)
+// would not localize consistently. Measured: within 0.01 m.
+TEST(Cli, DisBagReplaysToTheEndAndSeedsAgree) {
+  MOTE_REQUIRE_DATA(yaml, "dis/dis_underground.yaml");
+  const fs::path dir = scratch("dis");
+  std::vector<std::array<double, 2>> ends;
+  for (const int seed : {1, 2, 3, 4, 5}) {
+    const fs::path out = dir / ("seed" + std::to_string(seed));
+    const Outcome o = replay_global(yaml, yaml.parent_path() / "dis-underground.bag", out, seed);
+    ASSERT_EQ(o.status, 0) << o.err;
+    const std::string report = slurp(out / "report.json");
+    EXPECT_DOUBLE_EQ(json_number(report, "scans"), 4427.0);
+    EXPECT_DOUBLE_EQ(json_number(report, "records_skipped"), 0.0);
+    EXPECT_GT(json_number(report, "updates"), 100.0);
+    const std::array<double, 2> xy = end_position(out);
+    ends.push_back(xy);
+  }
+  expect_within(ends, 0.3);
+}
+
+// Issue 15: global localization on the Wean Hall log (a corridor whose doors look alike)
+// with mote's defaults ends in the doorway of the cluttered room at the corridor's south end
+// where the robot drove (map.png), at (41.45, 40.28). A seed sometimes takes a look-alike door
+// instead, and which seeds do changes with the last bits of the arithmetic: seeds 1-40 missed
+// 2 times in 40 with MOTE_NATIVE, 2 with the portable build's avx2 variant and 4 with generic
+// (seed 4 of 1-5 under avx2, none of 1-5 in the other two). So the test holds a rate, not a
+// seed: at least 8 of seeds 1-10 end within 0.5 m of that place (a filter converging 95% of
+// the time passes 99% of builds; one converging half the time fails 95%), and the seeds that do
+// end there agree within 0.3 m.
+TEST(Cli, WeanGlobalLocalizationSeedsAgree) {
+  MOTE_REQUIRE_DATA(yaml, "wean/wean_map.yaml");
+  const fs::path dir = scratch("wean");
+  std::vector<std::array<double, 2>> at_the_door;
+  for (int seed = 1; seed <= 10; ++seed) {
+    const fs::path out = dir / ("seed" + std::to_string(seed));
+    const Outcome o = replay_global(yaml, yaml.parent_path() / "robotdata1.clf", out, seed);
+    ASSERT_EQ(o.status, 0) << o.err;
+    const std::string report = slurp(out / "report.json");
+    EXPECT_DOUBLE_EQ(json_number(report, "scans"), 713.0);
+    EXPECT_DOUBLE_EQ(json_number(report, "records_skipped"), 0.0);
+    const std::array<double, 2> xy = end_position(out);
+    ASSERT_FALSE(std::isnan(xy[0])) << "seed " << seed << ": no end pose";
+    if (std::hypot(xy[0] - 41.45, xy[1] - 40.28) < 0.5) {
+      at_the_door.push_back(xy);
+    } else {
+      std::cout << "seed " << seed << " ends at (" << xy[0] << ", " << xy[1] << ")\n";
+    }
+  }
+  EXPECT_GE(at_the_door.size(), 8U) << "of seeds 1-10 ended at (41.45, 40.28)";
+  expect_within(at_the_door, 0.3);
+}
+
+// Issue 15: tracking on the Intel log with mote's defaults (no config), 5000 particles: the
+// likelihood field within 0.06 m and 1 degree, the beam model within 0.08 m and 1.5 degrees.
+void expect_intel_defaults(const std::string& model, double ate_m, double heading_deg) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  const fs::path out = scratch("intel-defaults-" + model);
+  const Outcome o =
+      mote("replay --map '" + yaml.string() + "' --log '" + (data / "intel.clf").string() +
+           "' --reference '" + (data / "intel.gt.tum").string() + "' --particles 5000 --model " +
+           model + " --quiet --out '" + out.string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string report = slurp(out / "report.json");
+  EXPECT_LE(json_number(report, "ate_rmse_m"), ate_m);
+  EXPECT_LE(json_number(report, "heading_rmse_deg"), heading_deg);
+}
+
+TEST(Cli, IntelDefaultsTrackWithTheLikelihoodField) {
+  expect_intel_defaults("likelihood_field", 0.06, 1.0);
+}
+
+TEST(Cli, IntelDefaultsTrackWithTheBeamModel) { expect_intel_defaults("beam", 0.08, 1.5); }
+
+// Issue 14: the kidnapping made from the Intel log (mote kidnap: first 40% and last 30% of the
+// scans, the odometry continued smoothly, the robot carried 27 m), 5000 particles, mote's
+// defaults: back within 0.3 m, and staying there for 20 updates, within 30 updates of the
+// splice. Measured: 6 (nav2's defaults, recovery off: 95; before the recovery fixes: 94).
+TEST(Cli, IntelKidnappingRecoversWithin30Updates) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  const fs::path dir = scratch("intel-kidnap");
+  const Outcome made = mote("kidnap --log '" + (data / "intel.clf").string() + "' --reference '" +
+                            (data / "intel.gt.tum").string() + "' --out '" + dir.string() + "'");
+  ASSERT_EQ(made.status, 0) << made.err;
+  const std::size_t at = made.out.find("splice stamp ");
+  ASSERT_NE(at, std::string::npos) << made.out;
+  const std::string stamp = made.out.substr(at + 13, made.out.find('\n', at) - at - 13);
+  const Outcome o = mote("replay --map '" + yaml.string() + "' --log '" +
+                         (dir / "kidnap.clf").string() + "' --reference '" +
+                         (dir / "kidnap.tum").string() + "' --particles 5000 --kidnapped-at " +
+                         stamp + " --quiet --out '" + (dir / "out").string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string report = slurp(dir / "out" / "report.json");
+  ASSERT_NE(report.find("\"recovered\": true"), std::string::npos) << report;
+  EXPECT_LE(json_number(report, "recovered_after_updates"), 30.0);
+}
+
+// Issue 15: a ring of eight people (mote crowd: 0.4-1.0 m from the robot) around it for the
+// 20 s of the Intel log that turn the most on the spot, blocking 78% of those scans' beams.
+// With mote's defaults the likelihood field rides it out within the goal for unseen logs
+// (0.10 m); with unmapped_obstacle_filter off it is lost (measured 0.082 m against 1.72 m).
+TEST(Cli, IntelCrowdIsRiddenOutWithTheDefaults) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  const fs::path dir = scratch("intel-crowd");
+  const Outcome made =
+      mote("crowd --log '" + (data / "intel.clf").string() + "' --out '" + dir.string() + "'");
+  ASSERT_EQ(made.status, 0) << made.err;
+  {
+    std::ofstream off(dir / "off.yaml");
+    off << "unmapped_obstacle_filter: false\n";
+  }
+  const auto ate = [&](const std::string& extra, const std::string& name) {
+    const Outcome o =
+        mote("replay --map '" + yaml.string() + "' --log '" + (dir / "crowd.clf").string() +
+             "' --reference '" + (data / "intel.gt.tum").string() +
+             "' --particles 5000 --quiet --out '" + (dir / name).string() + "'" + extra);
+    EXPECT_EQ(o.status, 0) << o.err;
+    return json_number(slurp(dir / name / "report.json"), "ate_rmse_m");
+  };
+  EXPECT_LE(ate("", "on"), 0.10);
+  EXPECT_GT(ate(" --config '" + (dir / "off.yaml").string() + "'", "off"), 0.5);
+}
+
+// Issue 16: global localization on the MAC first floor map with 20000 particles ends at the
+// same place for seeds 1-5 (within 0.3 m); issue 15: so does it with mote's defaults (no
+// particle count). Measured: within 0.01 m and 0.02 m, at (8.11, -14.66), in the corridor the
+// robot drove down (map.png).
+void expect_ros2_seeds_agree(const std::string& flags, const std::string& name) {
+  MOTE_REQUIRE_DATA(yaml, "ros2/mac_1st_floor_9_23.yaml");
+  const fs::path dir = scratch(name);
+  std::vector<std::array<double, 2>> ends;
+  for (const int seed : {1, 2, 3, 4, 5}) {
+    const fs::path out = dir / ("seed" + std::to_string(seed));
+    const Outcome o =
+        replay_global(yaml, yaml.parent_path() / "mac_take2_zstd.mcap", out, seed, flags);
+    ASSERT_EQ(o.status, 0) << o.err;
+    ends.push_back(end_position(out));
+  }
+  expect_within(ends, 0.3);
+  EXPECT_LT(std::hypot(ends[0][0] - 8.11, ends[0][1] + 14.66), 0.5);
+}
+
+TEST(Cli, Ros2GlobalLocalizationSeedsAgree) {
+  expect_ros2_seeds_agree(" --particles 20000", "ros2_global");
+}
+
+TEST(Cli, Ros2GlobalLocalizationSeedsAgreeWithTheDefaults) {
+  expect_ros2_seeds_agree("", "ros2_global_defaults");
+}
+
+}  // namespace
+}  // namespace mote_cli_test
