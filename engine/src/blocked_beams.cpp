@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "mote/core/parallel.hpp"
+
 namespace mote {
 namespace {
 
@@ -84,28 +86,35 @@ double mean_endpoint_range(const BeamSet& beams) {
 
 }  // namespace
 
-void BlockedBeamFilter::accumulate(const BeamSet& beams, const Pose2& pose, double w,
+bool BlockedBeamFilter::blocked_at(const BeamSet& beams, std::size_t b, const SensorSample& s,
                                    const ScanFit& fit, double band) {
+  const double r = beams.range[b];
+  if (!(r < beams.range_max)) return false;  // a no-return has no endpoint
   const FieldWalker walk(fit);
   const double k = walk.inv_cell();
+  const double a = s.theta + beams.angle[b];
+  const Point2 u = walk.cell_direction(std::cos(a), std::sin(a));
+  // An endpoint within sigma_hit of a wall is a hit wherever the ray went (the likelihood
+  // field scores it near its peak); only the others are traced, first past the endpoint
+  // (where a wall within the band ends most of them), then up to it.
   const double near_wall = std::max(fit.mixture().sigma_hit * k, 1.5);
-  const Pose2 sensor = compose(pose, beams.sensor_pose);
-  const Point2 origin = walk.cell_point({sensor.x, sensor.y});
-  for (std::size_t b = 0; b < beams.size(); ++b) {
-    const double r = beams.range[b];
-    if (!(r < beams.range_max)) continue;  // a no-return has no endpoint
-    const double a = sensor.theta + beams.angle[b];
-    const Point2 u = walk.cell_direction(std::cos(a), std::sin(a));
-    // An endpoint within sigma_hit of a wall is a hit wherever the ray went (the likelihood
-    // field scores it near its peak); only the others are traced, first past the endpoint
-    // (where a wall within the band ends most of them), then up to it.
-    const double at_end = walk.cells_to_wall({origin.x + r * k * u.x, origin.y + r * k * u.y});
-    if (at_end < near_wall) continue;  // on a wall, or off the map
-    const double beyond = std::min(r + band, static_cast<double>(beams.range_max));
-    if (walk.free(origin, u, r * k, beyond * k) && walk.free(origin, u, 0.0, r * k)) {
-      blocked_[b] += w;
-    }
+  const double at_end = walk.cells_to_wall({s.origin.x + r * k * u.x, s.origin.y + r * k * u.y});
+  if (at_end < near_wall) return false;  // on a wall, or off the map
+  const double beyond = std::min(r + band, static_cast<double>(beams.range_max));
+  return walk.free(s.origin, u, r * k, beyond * k) && walk.free(s.origin, u, 0.0, r * k);
+}
+
+bool BlockedBeamFilter::majority_blocked(const BeamSet& beams, std::size_t b, const ScanFit& fit,
+                                         double band) const {
+  const double needed = kAgreement * total_;
+  double blocked = 0.0;
+  double clear = 0.0;
+  for (const SensorSample& s : samples_) {
+    (blocked_at(beams, b, s, fit, band) ? blocked : clear) += s.weight;
+    if (blocked > needed) return true;
+    if (clear >= total_ - needed) return false;
   }
+  return false;
 }
 
 bool BlockedBeamFilter::focused(const PoseEstimate& heaviest, double band, double range) {
@@ -120,19 +129,26 @@ std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleVie
   const double band = hit_band(fit.mixture(), beams.range_max);
   if (n == 0 || beams.empty() || !std::isfinite(band)) return 0;
   if (!focused(heaviest, band, mean_endpoint_range(beams))) return 0;
-  blocked_.assign(beams.size(), 0.0);
+  const FieldWalker walk(fit);
+  samples_.clear();
+  total_ = 0.0;
   const std::size_t stride = std::max<std::size_t>(1, (n + kSample - 1) / kSample);
-  double total = 0.0;
   for (std::size_t i = 0; i < n; i += stride) {
     const double w = std::exp(static_cast<double>(p.logw[i]));
     if (!(w > 0.0) || !is_finite(p.pose(i))) continue;
-    accumulate(beams, p.pose(i), w, fit, band);
-    total += w;
+    const Pose2 sensor = compose(p.pose(i), beams.sensor_pose);
+    samples_.push_back({walk.cell_point({sensor.x, sensor.y}), sensor.theta, w});
+    total_ += w;
   }
-  if (!(total > 0.0)) return 0;
+  if (!(total_ > 0.0)) return 0;
+  // Beams are independent: decided in parallel, each by its own fixed sample order.
+  drop_.assign(beams.size(), 0);
+  par::for_each_chunk(beams.size(), kBeamGrain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) drop_[b] = majority_blocked(beams, b, fit, band);
+  });
   std::size_t kept = 0;
   for (std::size_t b = 0; b < beams.size(); ++b) {
-    if (blocked_[b] > kAgreement * total) continue;
+    if (drop_[b] != 0) continue;
     beams.angle[kept] = beams.angle[b];
     beams.range[kept] = beams.range[b];
     ++kept;

@@ -50,11 +50,25 @@ class BlockedBeamFilter {
   [[nodiscard]] static bool focused(const PoseEstimate& heaviest, double band, double range);
 
  private:
-  // Adds `w` to blocked_[b] for every beam b blocked at `pose`.
-  void accumulate(const BeamSet& beams, const Pose2& pose, double w, const ScanFit& fit,
-                  double band);
+  // One sampled particle: its sensor in grid-frame cell units, and its weight.
+  struct SensorSample {
+    Point2 origin;
+    double theta = 0.0;
+    double weight = 0.0;
+  };
+  // Whether beam b is blocked at sample s (cells per metre k, hit band in metres).
+  [[nodiscard]] static bool blocked_at(const BeamSet& beams, std::size_t b, const SensorSample& s,
+                                       const ScanFit& fit, double band);
+  // Whether more than kAgreement of the samples' weight finds beam b blocked. Samples are
+  // visited in order until the answer is settled, so a clear beam costs half the sample.
+  [[nodiscard]] bool majority_blocked(const BeamSet& beams, std::size_t b, const ScanFit& fit,
+                                      double band) const;
 
-  std::vector<double> blocked_;  // per beam: belief weight on the poses where it is blocked
+  static constexpr std::size_t kBeamGrain = 16;  // beams per parallel task
+
+  std::vector<SensorSample> samples_;
+  std::vector<unsigned char> drop_;  // per beam: 1 when left out
+  double total_ = 0.0;               // the samples' weight
 };
 
 }  // namespace mote
