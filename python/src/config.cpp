@@ -10,21 +10,55 @@
 namespace mote::python {
 namespace {
 
-// Every field of LocalizerConfig, in header order.
-#define MOTE_CONFIG_FIELDS(X)                                                                      \
-  X(min_particles)                                                                                 \
-  X(max_particles)                                                                                 \
-  X(global_particles_per_bin) X(pf_err) X(pf_z) X(kld_z_is_quantile) X(kld_bin_xy)                 \
-      X(kld_bin_theta) X(resample_interval) X(resample_ess_fraction) X(recovery_alpha_slow)        \
-          X(recovery_alpha_fast) X(recovery_fit_band) X(update_min_d) X(update_min_a)              \
-              X(odom_jump_max_d) X(odom_model_type) X(amcl_motion_conventions) X(alpha1) X(alpha2) \
-                  X(alpha3) X(alpha4) X(alpha5) X(wheelbase) X(adaptive_motion_noise)              \
-                      X(laser_model_type) X(likelihood_combination) X(max_beams)                   \
-                          X(laser_min_range) X(laser_max_range) X(z_hit) X(z_short) X(z_max)       \
-                              X(z_rand) X(sigma_hit) X(lambda_short) X(laser_likelihood_max_dist)  \
-                                  X(likelihood_tempering) X(tempering_ess_fraction)                \
-                                      X(unknown_cells_block_rays) X(unmapped_obstacle_filter)      \
-                                          X(threads) X(seed) X(grain)
+// Every field of LocalizerConfig, in header order (kept by hand: one line a field, so
+// clang-format is off for it; python/tests/test_api.py checks it against the header).
+// clang-format off
+#define MOTE_CONFIG_FIELDS(X) \
+  X(min_particles) \
+  X(max_particles) \
+  X(global_particles_per_bin) \
+  X(pf_err) \
+  X(pf_z) \
+  X(kld_z_is_quantile) \
+  X(kld_bin_xy) \
+  X(kld_bin_theta) \
+  X(resample_interval) \
+  X(resample_ess_fraction) \
+  X(recovery_alpha_slow) \
+  X(recovery_alpha_fast) \
+  X(recovery_fit_band) \
+  X(update_min_d) \
+  X(update_min_a) \
+  X(odom_jump_max_d) \
+  X(odom_model_type) \
+  X(amcl_motion_conventions) \
+  X(alpha1) \
+  X(alpha2) \
+  X(alpha3) \
+  X(alpha4) \
+  X(alpha5) \
+  X(wheelbase) \
+  X(adaptive_motion_noise) \
+  X(laser_model_type) \
+  X(likelihood_combination) \
+  X(max_beams) \
+  X(laser_min_range) \
+  X(laser_max_range) \
+  X(z_hit) \
+  X(z_short) \
+  X(z_max) \
+  X(z_rand) \
+  X(sigma_hit) \
+  X(lambda_short) \
+  X(laser_likelihood_max_dist) \
+  X(likelihood_tempering) \
+  X(tempering_ess_fraction) \
+  X(unknown_cells_block_rays) \
+  X(unmapped_obstacle_filter) \
+  X(threads) \
+  X(seed) \
+  X(grain)
+// clang-format on
 
 LocalizerConfig config_from(const LocalizerConfig& base, const py::kwargs& fields) {
   LocalizerConfig c = base;

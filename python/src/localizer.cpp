@@ -98,7 +98,11 @@ void bind_estimate(py::module_& m) {
                              [](const LocalizationEstimate& e) { return e.overall.covariance; });
 }
 
-PyLocalizer& unlocked_ref(const py::object& self) { return self.cast<PyLocalizer&>(); }
+/// The Localizer for a read between calls: reading while another thread updates it is refused.
+const Localizer& idle(const PyLocalizer& l) {
+  if (l.busy.load()) throw Error("Localizer: read during an update in another thread");
+  return l.impl;
+}
 
 void bind_localizer_class(py::module_& m) {
   py::class_<PyLocalizer>(m, "Localizer",
@@ -131,10 +135,10 @@ void bind_localizer_class(py::module_& m) {
           "One filter step (GIL released). Returns True when the filter ran; see last_update. "
           "Particle views taken before become stale.")
       .def_property_readonly(
-          "estimate", [](const PyLocalizer& l) { return l.impl.estimate(); },
+          "estimate", [](const PyLocalizer& l) { return idle(l).estimate(); },
           "A copy of the current estimate (mean, covariance, clusters).")
       .def_property_readonly(
-          "last_update", [](const PyLocalizer& l) { return l.impl.last_update(); },
+          "last_update", [](const PyLocalizer& l) { return idle(l).last_update(); },
           "A copy of the statistics of the last update().")
       .def_property_readonly(
           "config", [](const PyLocalizer& l) { return l.impl.config(); }, "a copy")
@@ -142,8 +146,8 @@ void bind_localizer_class(py::module_& m) {
       .def_property_readonly(
           "particles",
           [](const py::object& self) {
-            PyLocalizer& l = unlocked_ref(self);
-            if (l.busy.load()) throw Error("Localizer: particles read during an update");
+            const auto& l = self.cast<const PyLocalizer&>();
+            idle(l);
             return ParticleSet::view_of(self, l);
           },
           "The particles as zero-copy read-only NumPy views (x, y, theta, log_weight), valid "

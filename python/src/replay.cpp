@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "mote/core/error.hpp"
 #include "mote/engine/localizer_config.hpp"
 #include "mote/replay/replay_run.hpp"
 #include "mote/replay/report.hpp"
@@ -26,11 +28,16 @@ class LogReader {
   explicit LogReader(std::unique_ptr<replay::ScanSource> source) : source_(std::move(source)) {}
 
   py::tuple next() {
+    if (busy_.exchange(true)) throw Error("LogReader: already in use by another thread");
     std::optional<replay::ScanFrame> frame;
-    {
+    try {
       const py::gil_scoped_release unlocked;
       frame = source_->next();
+    } catch (...) {
+      busy_.store(false);
+      throw;
     }
+    busy_.store(false);
     if (!frame) throw py::stop_iteration();
     return py::make_tuple(frame->stamp, frame->odometry, std::move(frame->scan));
   }
@@ -49,6 +56,7 @@ class LogReader {
 
  private:
   std::unique_ptr<replay::ScanSource> source_;
+  std::atomic<bool> busy_{false};  ///< next() runs without the GIL: one thread at a time
 };
 
 replay::ReaderOptions reader_options(bool lenient, std::optional<float> laser_max_range,
@@ -140,7 +148,7 @@ void bind_replay(py::module_& m) {
         const replay::ReaderOptions o = reader_options(lenient, laser_max_range, scan_topic,
                                                        odom_topic, odom_frame, base_frame);
         const py::gil_scoped_release unlocked;
-        return LogReader(replay::open_scan_log(path, o));
+        return std::make_unique<LogReader>(replay::open_scan_log(path, o));
       },
       py::arg("path"), py::kw_only(), py::arg("lenient") = false,
       py::arg("laser_max_range") = py::none(), py::arg("scan_topic") = "",

@@ -77,5 +77,5 @@ def test_one_localizer_refuses_two_threads(floorplan):
             break
         time.sleep(0.001)
     worker.join()
-    assert errors and "during an update" in errors[0]
+    assert errors and "during an update" in errors[0], errors
     assert np.isfinite(loc.particles.x).all()
