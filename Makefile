@@ -29,8 +29,10 @@ test: build
 # `make bench`: the default (portable, run-time dispatched) Release build in build-bench/
 # (CMAKE_FLAGS=-DMOTE_NATIVE=ON for -march=native), every benchmark suite with
 # medians of 3 repetitions into bench/results/<suite>.json, then bench/plot.py writes the
-# end-to-end table (e2e.md) and plot (e2e.png). BENCH_FILTER (a regex) runs a subset.
+# end-to-end table (e2e.md) and plot (e2e.png), and bench/python/bench_python.py (the Python
+# package's overhead) into python.json. BENCH_FILTER (a regex) runs a subset.
 BENCH_BUILD  ?= build-bench
+BENCH_DATA   ?= ../shared/data
 BENCH_SUITES ?= bench_e2e bench_engine bench_maps bench_raycast
 BENCH_FILTER ?= .
 BENCH_REPS   ?= 3
@@ -53,6 +55,11 @@ bench: deps
 	done
 	uptime >> $(BENCH_OUT)/uptime.txt
 	$(BENCH_PYTHON) bench/plot.py $(BENCH_OUT)
+	@if grep -q '^MOTE_BUILD_PYTHON:BOOL=ON' $(BENCH_BUILD)/CMakeCache.txt; then \
+	  cmake --build $(BENCH_BUILD) -j $(JOBS) --target mote_python && \
+	  PYTHONPATH=$(BENCH_BUILD)/python $(BENCH_PYTHON) bench/python/bench_python.py \
+	    $(BENCH_DATA) $(BENCH_OUT)/python.json; \
+	else echo "bench: Python package not built (MOTE_BUILD_PYTHON off): bench_python.py skipped"; fi
 
 # Every reader's libFuzzer target for FUZZ_SECONDS each, under ASan + UBSan, in build-fuzz (clang);
 # fails on any finding. The corpus grows in build-fuzz/fuzz-corpus between runs.
