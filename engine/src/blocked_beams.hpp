@@ -13,17 +13,17 @@
 namespace mote {
 
 /// The distance filter of Fox, Burgard and Thrun ("Markov localization for mobile robots in
-/// dynamic environments", JAIR 11, 1999, section 4.2) on the map's distance field. A reading z
+/// dynamic environments", JAIR 11, 1999) on the map's distance field. A reading z
 /// is blocked at a pose when the map holds no obstacle along the beam up to z + band: the beam
 /// stopped short of where the map says it ends, by more than the miss at which the hit term
 /// z_hit N(z - z*; 0, sigma_hit^2) falls below the random floor z_rand / z_max (Thrun eqs. 6.4,
-/// 6.11); that is what the beam model's z_short term explains. An endpoint on a wall is never
-/// blocked, and a reading past a wall is not either (a map error or a wrong pose, which the
-/// weighting must see). The probability that a beam is blocked is the belief's weight on the
-/// poses where it is, over an even stride sample of the predicted particles (the belief
-/// before this scan, as in Fox et al.); a beam that most of the belief finds blocked is left out
-/// for every particle, once the belief has settled on one place (kFocusedWeight). Dropping it for
-/// all particles alike favours none of them, unlike weighing it with the likelihood field, where a
+/// 6.11); that is what the beam model's z_short term explains. An endpoint within sigma_hit of a
+/// wall is never blocked, and a reading past a wall is not either (a map error or a wrong pose,
+/// which the weighting must see). The probability that a beam is blocked is the belief's weight on
+/// the poses where it is, over an even stride sample of the predicted particles (the belief before
+/// this scan, as in Fox et al.); a beam that most of the belief finds blocked is left out for every
+/// particle, once the belief has settled on one place (kFocusedWeight). Dropping it for all
+/// particles alike favours none of them, unlike weighing it with the likelihood field, where a
 /// crowd's readings reward whichever wrong pose puts a wall at 0.5 m. With z_rand = 0 no reading is
 /// ever random and the filter drops nothing.
 class BlockedBeamFilter {
