@@ -3,6 +3,8 @@ mote.replay runs, and a failing task surfaces as mote.InputError naming its log.
 
 import math
 import re
+import subprocess
+import sys
 
 import distributed
 import pytest
@@ -82,6 +84,9 @@ def test_a_failing_task_names_its_log(logs, cluster, tmp_path):
     assert good.error is None and good.ate_rmse_m is not None
     assert broken.updates == 0 and broken.ate_rmse_m is None
     assert "log 'broken'" in broken.error and str(missing) in broken.error
+    with pytest.raises(mote.ConfigError, match=r"log 'good', config 'empty', seed 42: .*min_particles"):
+        mote.sweep({"good": logs["start"]}, {"empty": {"min_particles": 0}},
+                   client=cluster.scheduler_address)
 
 
 def test_names_and_bad_entries(intel):
@@ -94,3 +99,9 @@ def test_names_and_bad_entries(intel):
         mote.sweep([log], [{"no_such_field": 1}])
     with pytest.raises(ValueError, match="errors must be"):
         mote.sweep([log], [None], errors="ignore")
+
+
+def test_import_mote_does_not_import_dask():
+    code = "import sys, mote; print(sorted(m for m in ('dask', 'distributed') if m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]" and callable(mote.sweep)
