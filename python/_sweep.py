@@ -107,7 +107,8 @@ def _replay_task(task):
     import mote
 
     try:
-        report = mote.replay(config=mote.LocalizerConfig(**task.config_fields), particles=task.particles, seed=task.seed,
+        config = mote.LocalizerConfig(**task.config_fields)
+        report = mote.replay(config=config, particles=task.particles, seed=task.seed,
                              threads=task.threads, **task.replay_kwargs)
     except mote.Error as e:
         kinds = [k for k in ("InputError", "ConfigError") if isinstance(e, getattr(mote, k))]
@@ -193,9 +194,12 @@ def _named_logs(logs):
             raise ValueError(f"sweep: log {entry!r} needs 'map' and 'log' and may have "
                              f"{', '.join(LOG_KEYS[2:])} and 'name'" +
                              (f"; unknown: {', '.join(unknown)}" if unknown else ""))
-        kwargs = {k: (os.fspath(v) if k in ("map", "log", "reference") else v)
+        if name is None:
+            name = entry.get("name", os.fspath(kwargs["log"]))
+        # Absolute: a worker's working directory need not be the client's.
+        kwargs = {k: (os.path.abspath(v) if k in ("map", "log", "reference") else v)
                   for k, v in kwargs.items()}
-        named.append((str(name if name is not None else entry.get("name", kwargs["log"])), kwargs))
+        named.append((str(name), kwargs))
     return _unique(named, "log")
 
 
@@ -208,7 +212,7 @@ def _named_configs(configs):
     named = []
     for name, c in entries:
         config = _as_config(c)
-        named.append((name or _config_name(c, config), _fields(config)))
+        named.append((_config_name(c, config) if name is None else name, _fields(config)))
     return _unique(named, "config")
 
 

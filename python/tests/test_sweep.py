@@ -76,15 +76,15 @@ def cluster():
 def test_a_failing_task_names_its_log(logs, cluster, tmp_path):
     missing = tmp_path / "nope.clf"
     bad = {"good": logs["start"], "broken": dict(logs["start"], log=str(missing))}
-    with pytest.raises(mote.InputError,
-                       match=r"log 'broken', config 'defaults', seed 42: .*" + re.escape(str(missing))):
+    named = r"log 'broken', config 'defaults', seed 42: .*" + re.escape(str(missing))
+    with pytest.raises(mote.InputError, match=named):
         mote.sweep(bad, [None], client=cluster.scheduler_address, particles=PARTICLES)
     with distributed.Client(cluster) as client:
         good, broken = mote.sweep(bad, [None], client=client, particles=PARTICLES, errors="keep")
     assert good.error is None and good.ate_rmse_m is not None
     assert broken.updates == 0 and broken.ate_rmse_m is None
     assert "log 'broken'" in broken.error and str(missing) in broken.error
-    with pytest.raises(mote.ConfigError, match=r"log 'good', config 'empty', seed 42: .*min_particles"):
+    with pytest.raises(mote.ConfigError, match=r"log 'good', config 'empty', seed 42: .*min_part"):
         mote.sweep({"good": logs["start"]}, {"empty": {"min_particles": 0}},
                    client=cluster.scheduler_address)
 
