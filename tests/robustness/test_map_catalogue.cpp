@@ -138,12 +138,12 @@ std::string png_of(int width, int height, std::uint32_t format) {
 
 /// `png` with IHDR claiming width x height, its CRC recomputed so libpng reads the header.
 std::string png_claiming(std::string png, std::uint32_t width, std::uint32_t height) {
-  for (int k = 0; k < 4; ++k) {
+  for (std::size_t k = 0; k < 4; ++k) {
     png[16 + k] = static_cast<char>(width >> (24 - 8 * k));
     png[20 + k] = static_cast<char>(height >> (24 - 8 * k));
   }
   const uLong crc = crc32(0, reinterpret_cast<const Bytef*>(png.data() + 12), 17);
-  for (int k = 0; k < 4; ++k) png[29 + k] = static_cast<char>(crc >> (24 - 8 * k));
+  for (std::size_t k = 0; k < 4; ++k) png[29 + k] = static_cast<char>(crc >> (24 - 8 * k));
   return png;
 }
 
