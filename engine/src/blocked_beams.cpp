@@ -117,18 +117,30 @@ bool BlockedBeamFilter::majority_blocked(const BeamSet& beams, std::size_t b, co
   return false;
 }
 
-bool BlockedBeamFilter::focused(const PoseEstimate& heaviest, double band, double range) {
-  const Eigen::Matrix3d& c = heaviest.covariance;
-  const double spread = std::sqrt(c(0, 0) + c(1, 1)) + std::sqrt(c(2, 2)) * range;
-  return heaviest.weight >= kFocusedWeight && spread < band;
+double BlockedBeamFilter::endpoint_spread(const PoseEstimate& cluster, double range) {
+  const Eigen::Matrix3d& c = cluster.covariance;
+  return std::sqrt(c(0, 0) + c(1, 1)) + std::sqrt(c(2, 2)) * range;
+}
+
+bool BlockedBeamFilter::focused(const std::vector<PoseEstimate>& clusters, double band,
+                                double range) {
+  // A cluster of a tenth of the weight or more is a hypothesis; the many small clusters of a
+  // diffuse set are not, however tight each one's few particles are.
+  constexpr double kHypothesisWeight = 1.0 - kFocusedWeight;
+  double settled = 0.0;
+  for (const PoseEstimate& c : clusters) {
+    if (c.weight >= kHypothesisWeight && endpoint_spread(c, range) < band) settled += c.weight;
+  }
+  return settled >= kFocusedWeight;
 }
 
 std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleView& p,
-                                          const ScanFit& fit, const PoseEstimate& heaviest) {
+                                          const ScanFit& fit,
+                                          const std::vector<PoseEstimate>& clusters) {
   const std::size_t n = p.size();
   const double band = hit_band(fit.mixture(), beams.range_max);
   if (n == 0 || beams.empty() || !std::isfinite(band)) return 0;
-  if (!focused(heaviest, band, mean_endpoint_range(beams))) return 0;
+  if (!focused(clusters, band, mean_endpoint_range(beams))) return 0;
   const FieldWalker walk(fit);
   samples_.clear();
   total_ = 0.0;

@@ -22,7 +22,7 @@ namespace mote {
 /// which the weighting must see). The probability that a beam is blocked is the belief's weight on
 /// the poses where it is, over an even stride sample of the predicted particles (the belief before
 /// this scan, as in Fox et al.); a beam that most of the belief finds blocked is left out for every
-/// particle, once the belief has settled on one place (kFocusedWeight). Dropping it for all
+/// particle, once the belief has settled on a few places (focused()). Dropping it for all
 /// particles alike favours none of them, unlike weighing it with the likelihood field, where a
 /// crowd's readings reward whichever wrong pose puts a wall at 0.5 m. With z_rand = 0 no reading is
 /// ever random and the filter drops nothing.
@@ -32,22 +32,30 @@ class BlockedBeamFilter {
   static constexpr std::size_t kSample = 64;
   /// Share of the belief that must find a beam blocked for it to be left out: a majority.
   static constexpr double kAgreement = 0.5;
-  /// Share of the belief its heaviest cluster must hold for the filter to run (focused()).
+  /// Share of the belief that settled hypotheses must hold for the filter to run (focused()).
   static constexpr double kFocusedWeight = 0.9;
 
   /// Removes the blocked beams from `beams` (keeping their order); returns how many it removed.
-  /// `fit` supplies the map, its distance field and the sensor mixture; `heaviest` is the
-  /// belief's heaviest cluster before this scan. Nothing is removed unless the belief is
-  /// focused().
+  /// `fit` supplies the map, its distance field and the sensor mixture; `clusters` are the
+  /// belief's clusters before this scan. Nothing is removed unless the belief is focused().
   std::size_t operator()(BeamSet& beams, const ConstParticleView& particles, const ScanFit& fit,
-                         const PoseEstimate& heaviest);
+                         const std::vector<PoseEstimate>& clusters);
 
-  /// Whether the belief has settled on one place closely enough to say where the walls are:
-  /// its heaviest cluster holds kFocusedWeight of it, and its spread moves a typical endpoint
-  /// (position standard deviation plus heading standard deviation times the mean range) by
-  /// less than the hit band. A diffuse belief (global localization) finds most short readings
-  /// "blocked" at its many open poses, yet those readings are what tells the poses apart.
-  [[nodiscard]] static bool focused(const PoseEstimate& heaviest, double band, double range);
+  /// Whether the belief has settled closely enough to say where the walls are: clusters that
+  /// each hold at least 1 - kFocusedWeight of it and whose spread moves a typical endpoint by
+  /// less than the hit band hold kFocusedWeight of it together. Two tight hypotheses count, as
+  /// in Fox et al., where the probability that a beam is blocked sums over the whole belief:
+  /// gating on the heaviest cluster alone switched the filter off just when a look-alike pose
+  /// 25 m down the Wean corridor drew level with the right one, as a few scans there read short
+  /// of the map (scan fit 0.69 against 0.92), and the short readings then handed the wrong pose
+  /// the belief (seed 4). A diffuse belief (global localization, or its many small clusters
+  /// after the first resampling) finds most short readings "blocked" at its many open poses,
+  /// yet those readings are what tells the poses apart.
+  [[nodiscard]] static bool focused(const std::vector<PoseEstimate>& clusters, double band,
+                                    double range);
+  /// Position standard deviation plus heading standard deviation times `range`: how far the
+  /// cluster's spread moves an endpoint at that range.
+  [[nodiscard]] static double endpoint_spread(const PoseEstimate& cluster, double range);
 
  private:
   // One sampled particle: its sensor in grid-frame cell units, and its weight.

@@ -153,7 +153,7 @@ void Localizer::Impl::predict(const Pose2& odometry) {
 
 void Localizer::Impl::drop_blocked_beams() {
   if (!config.unmapped_obstacle_filter) return;
-  stats.blocked_beams = blocked_filter(beams, std::as_const(store).view(), fit, estimate.best());
+  stats.blocked_beams = blocked_filter(beams, std::as_const(store).view(), fit, estimate.clusters);
   stats.beams = beams.size();
   if (beams.empty()) {
     stats.reason =
