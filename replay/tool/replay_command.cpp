@@ -25,7 +25,7 @@ constexpr std::array<FlagSpec, 24> kFlags{{
     {"model", "NAME", "likelihood_field or beam (default likelihood_field)"},
     {"particles", "N", "fixed particle count: min = max = N"},
     {"min-particles", "N", "KLD lower bound (default 500)"},
-    {"max-particles", "N", "KLD upper bound and cap of the initial sets (default 100000)"},
+    {"max-particles", "N", "KLD upper bound and cap of the initial sets (default 500000)"},
     {"beams", "N", "beams used per scan (default 60)"},
     {"threads", "N", "worker threads, 0 = every core (default 0)"},
     {"seed", "N", "random seed (default 42)"},

@@ -39,17 +39,22 @@ struct LocalizerConfig {
   // --- particles and KLD adaptation (Fox 2003) -------------------------------------------
   int min_particles = 500;  ///< lower bound of the KLD-adaptive count
   /// Upper bound of the KLD-adaptive count and of the initial sets. nav2: 2000, which leaves
-  /// global localization of a whole building with a particle every few metres.
-  int max_particles = 100000;
+  /// global localization of a whole building with a particle every few metres. 500000 is 34 MB
+  /// of particles and, on two cores, about 10 ms an update for the few updates a global start
+  /// stays that large.
+  int max_particles = 500000;
   /// Global initialization draws this many particles per KLD bin of free space (free area /
   /// kld_bin_xy^2 times the heading bins), within [min_particles, max_particles]: one per bin
   /// puts a particle within half a bin (25 cm, 5 degrees) of any pose, the basin from which the
-  /// likelihood field pulls it in; two make it likely that several are. Measured, Wean global
-  /// localization, seeds 1-10: at 1 per bin 9 of 10 seeds end at the right door in both the
-  /// native and the generic build (a different seed fails in each), at 2 all 10 in both. Above 0,
+  /// likelihood field pulls it in; more make it likely that several start near the truth, and
+  /// those few must outlive the collapse from the whole building to a few hundred particles in
+  /// the first five updates. Measured, Wean global localization (69000 bins), seeds ending
+  /// away from the doorway the robot drove to: 2 per bin (capped at 100000) 8 of seeds 1-120;
+  /// 2 per bin uncapped 3 of 1-80; 4 per bin 1 of 1-80 and 1 of 1-40 under MOTE_ISA=generic
+  /// and avx2 each; 6 per bin none of 1-120, nor of 1-40 under generic and avx2. Above 0,
   /// initialize() also keeps only the shortest prefix of its max_particles Gaussian draws that
   /// Fox's rule finds large enough. 0 draws max_particles at both initializations (nav2).
-  double global_particles_per_bin = 2.0;
+  double global_particles_per_bin = 6.0;
   double pf_err = 0.05;  ///< KLD epsilon: max K-L divergence between sample and true posterior
   /// KLD confidence. With kld_z_is_quantile false (mote's default) it is the probability 1 - delta
   /// whose standard-normal quantile enters Fox's formula; true reads it as that quantile itself,
