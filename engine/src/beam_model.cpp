@@ -4,9 +4,11 @@
 
 namespace mote {
 
-BeamModel::BeamModel(const OccupancyGrid& grid, const BeamModelParams& params) : params_(params) {
-  if (params.table) {
-    RangeTableOptions options = *params.table;
+BeamModel::BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
+                     const std::optional<RangeTableOptions>& table)
+    : params_(params) {
+  if (table) {
+    RangeTableOptions options = *table;
     options.unknown_blocks = params.unknown_blocks;
     table_.emplace(grid, options);
   } else {

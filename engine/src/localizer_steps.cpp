@@ -42,7 +42,7 @@ SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
           .memory_budget_bytes = static_cast<std::size_t>(c.range_table_budget_mb * 1048576.0)};
     }
     return SensorVariant(std::in_place_type<BeamModel>, grid,
-                         BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays, table});
+                         BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays}, table);
   }
   return SensorVariant(std::in_place_type<LikelihoodFieldModel>, grid,
                        LikelihoodFieldParams{.mixture = mixture_of(c),

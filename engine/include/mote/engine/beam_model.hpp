@@ -22,9 +22,6 @@ struct BeamModelParams {
   MixtureParams mixture;
   double tempering = 1.0;      ///< tau: log-likelihoods are multiplied by it
   bool unknown_blocks = true;  ///< unknown cells stop rays (amcl's map_calc_range)
-  /// Set: expected ranges come from a RangeTable built with these options (their
-  /// unknown_blocks is overridden by the field above); unset: exact Embree casting.
-  std::optional<RangeTableOptions> table;
 };
 
 /// Weighs particles by sum over beams of log p(z_b | z*_b(x)) (eqs. 6.4-6.11), z* ray-cast with
@@ -33,8 +30,10 @@ struct BeamModelParams {
 /// wall short of z_max are penalized for it.
 class BeamModel {
  public:
-  /// Builds the Embree scene of the grid, or the range table when params.table is set.
-  BeamModel(const OccupancyGrid& grid, const BeamModelParams& params);
+  /// Builds the Embree scene of the grid, or, when `table` is set, a RangeTable with those
+  /// options (their unknown_blocks replaced by params.unknown_blocks).
+  BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
+            const std::optional<RangeTableOptions>& table = std::nullopt);
 
   /// Adds tau * log p(z | x_i) to particles.logw[i] for i in [begin, end). Reentrant.
   void weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
