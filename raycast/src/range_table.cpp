@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -66,13 +67,15 @@ double units_for(int width, int height) {
 
 }  // namespace
 
-/// Lattice points near a sensor and their offsets from it (cells).
+/// Lattice points near a sensor and their offsets from it (cells). Always nine entries, so the
+/// choice among them is a fixed, branch-free loop; entry 0 is the sensor's own block and
+/// missing neighbours carry an all-ones mask that keeps them from being chosen.
 struct Candidates {
-  int count = 0;
-  int own = 0;  ///< index of the sensor's own block
-  std::array<std::uint32_t, 9> slot{};
-  std::array<float, 9> wx{};
-  std::array<float, 9> wy{};
+  static constexpr std::size_t kCount = 9;
+  std::array<std::uint32_t, kCount> slot{};
+  std::array<float, kCount> wx{};
+  std::array<float, kCount> wy{};
+  std::array<std::uint32_t, kCount> missing{};
 };
 
 struct RangeTable::Impl {
@@ -98,7 +101,8 @@ struct RangeTable::Impl {
   /// point (gx, gy) m in on-map cell (i, j).
   [[nodiscard]] Candidates candidates(int i, int j, double gx, double gy) const noexcept;
   /// Range (m) along table angle index a_real (fractional, in [0, 2 * angles)).
-  [[nodiscard]] float lookup(const Candidates& c, double a_real, float max_range) const noexcept;
+  [[nodiscard]] [[gnu::always_inline]] inline float lookup(const Candidates& c, double a_real,
+                                                           float max_range) const noexcept;
   [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
 };
 
@@ -147,28 +151,32 @@ void RangeTable::Impl::build() {
 
 Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) const noexcept {
   Candidates c;
+  c.missing.fill(0xFFFFFFFFU);
   const int bi = i / layout.lattice;
   const int bj = j / layout.lattice;
   const auto ox = static_cast<float>(gx / resolution);
   const auto oy = static_cast<float>(gy / resolution);
-  for (int nj = std::max(bj - 1, 0); nj <= std::min(bj + 1, layout.blocks_h - 1); ++nj) {
-    for (int ni = std::max(bi - 1, 0); ni <= std::min(bi + 1, layout.blocks_w - 1); ++ni) {
+  std::size_t k = 1;
+  for (int nj = bj - 1; nj <= bj + 1; ++nj) {
+    for (int ni = bi - 1; ni <= bi + 1; ++ni) {
+      if (ni < 0 || nj < 0 || ni >= layout.blocks_w || nj >= layout.blocks_h) continue;
       const std::uint32_t slot =
           layout.slot_of_block[static_cast<std::size_t>(nj) *
                                    static_cast<std::size_t>(layout.blocks_w) +
                                static_cast<std::size_t>(ni)];
       if (slot == detail::kNoSlot) continue;
-      if (ni == bi && nj == bj) c.own = c.count;
-      const auto k = static_cast<std::size_t>(c.count++);
-      c.slot[k] = slot;
-      c.wx[k] = point_x[slot] - ox;
-      c.wy[k] = point_y[slot] - oy;
+      const std::size_t at = ni == bi && nj == bj ? 0 : k++;
+      c.slot[at] = slot;
+      c.wx[at] = point_x[slot] - ox;
+      c.wy[at] = point_y[slot] - oy;
+      c.missing[at] = 0;
     }
   }
   return c;
 }
 
-float RangeTable::Impl::lookup(const Candidates& c, double a_real, float max_range) const noexcept {
+inline float RangeTable::Impl::lookup(const Candidates& c, double a_real,
+                                      float max_range) const noexcept {
   const int n = options.angles;
   int a = static_cast<int>(a_real + 0.5);
   if (a >= n) a -= n;
@@ -179,15 +187,17 @@ float RangeTable::Impl::lookup(const Candidates& c, double a_real, float max_ran
   // The lattice point whose ray along this direction passes closest to the sensor stands for it:
   // its range, moved along the ray by its offset, is the sensor's (sideways offsets are what a
   // table cannot correct: they change which wall corner a ray grazes).
-  std::size_t best = static_cast<std::size_t>(c.own);
-  float best_lateral = std::abs(dx * c.wy[best] - dy * c.wx[best]);
-  for (std::size_t k = 0; k < static_cast<std::size_t>(c.count); ++k) {
+  // The argmin as a min over keys: the lateral offset's bits (a non-negative float orders as
+  // its bits) with the index in the 4 lowest, so the loop has no branch and no serial chain;
+  // ties within 2^-19 of each other go to the lower index, the sensor's own point first.
+  std::uint32_t best_key = 0xFFFFFFFFU;
+  for (std::size_t k = 0; k < Candidates::kCount; ++k) {
     const float lateral = std::abs(dx * c.wy[k] - dy * c.wx[k]);
-    if (lateral < best_lateral) {
-      best_lateral = lateral;
-      best = k;
-    }
+    const std::uint32_t key = (std::bit_cast<std::uint32_t>(lateral) & ~0xFU) |
+                              static_cast<std::uint32_t>(k) | c.missing[k];
+    best_key = std::min(best_key, key);
   }
+  std::size_t best = best_key & 0xFU;
   const auto entry = [&](std::size_t k) {
     return ranges[static_cast<std::size_t>(c.slot[k]) * static_cast<std::size_t>(n) + ua];
   };
@@ -196,7 +206,7 @@ float RangeTable::Impl::lookup(const Candidates& c, double a_real, float max_ran
   const float inv_units = 1.0F / static_cast<float>(stats.units_per_cell);
   if (v != detail::kNoHit && static_cast<float>(v) * inv_units + along < 0.0F) {
     // The neighbour's wall lies behind the sensor: fall back to the sensor's own point.
-    best = static_cast<std::size_t>(c.own);
+    best = 0;
     v = entry(best);
     along = dx * c.wx[best] + dy * c.wy[best];
   }
