@@ -75,28 +75,28 @@ void walk_line(const CellMask& mask, const LineFamily& f, int l, double u_first,
   double next_y = f.dy == 0.0 ? kInf : ((j + (f.dy > 0.0 ? 1 : 0)) - oy) / f.dy;
   const double delta_x = f.dx == 0.0 ? kInf : 1.0 / std::abs(f.dx);
   const double delta_y = f.dy == 0.0 ? kInf : 1.0 / std::abs(f.dy);
-  const std::uint8_t* cell = mask.cells + static_cast<long>(j) * mask.width + i;
-  bool inside_wall = *cell != 0;  // the first point's cell is free, but be safe
+  long cell = static_cast<long>(j) * mask.width + i;  // index, stepped with i and j
+  bool inside_wall = mask.cells[cell] != 0;           // the first point's cell is free, but be safe
   double u = u_first;
   while (true) {
-    const bool blocking = *cell != 0;
+    const bool blocking = mask.cells[cell] != 0;
     if (blocking && !inside_wall) {
       hits.push_back(u);
       if (u > u_last) return;
     }
     inside_wall = blocking;
-    if (next_x < next_y) {
-      u = next_x;
-      next_x += delta_x;
-      i += step_i;
-      if (i < 0 || i >= mask.width) return;
-      cell += step_i;
-    } else {
-      u = next_y;
-      next_y += delta_y;
-      j += step_j;
-      if (j < 0 || j >= mask.height) return;
-      cell += step_row;
+    // Branch-free step to the nearer grid line: which axis comes next is data-dependent and
+    // mispredicts about every other step on diagonal lines.
+    const bool along_x = next_x < next_y;
+    u = along_x ? next_x : next_y;
+    next_x += along_x ? delta_x : 0.0;
+    next_y += along_x ? 0.0 : delta_y;
+    i += along_x ? step_i : 0;
+    j += along_x ? 0 : step_j;
+    cell += along_x ? step_i : step_row;
+    if (static_cast<unsigned>(i) >= static_cast<unsigned>(mask.width) ||
+        static_cast<unsigned>(j) >= static_cast<unsigned>(mask.height)) {
+      return;
     }
   }
 }
