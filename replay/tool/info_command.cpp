@@ -63,6 +63,7 @@ int info_command(std::span<char* const> words) {
     throw UsageError("mote info: expects a LOG (see mote info --help)");
   }
   const ParsedArgs args = parse_args("info", words.subspan(1), kFlags);
+  if (args.has("map")) throw UsageError("mote info: give a LOG or --map MAP.yaml, not both");
   replay::ReaderOptions options;
   if (auto t = args.text("scan-topic")) options.scan_topic = *t;
   if (auto t = args.text("odom-topic")) options.odom_topic = *t;
