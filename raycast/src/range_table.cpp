@@ -39,12 +39,17 @@ std::string megabytes(std::size_t bytes) {
 /// The finest lattice whose table fits the budget; ConfigError naming the coarsest's size.
 int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o) {
   std::size_t needed = 0;
+  const std::size_t cells =
+      static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height);
   for (int lattice = 1; lattice <= kMaxLattice; ++lattice) {
     const auto blocks = static_cast<std::size_t>((mask.width + lattice - 1) / lattice) *
                         static_cast<std::size_t>((mask.height + lattice - 1) / lattice);
     // Every block holding a point is an upper bound; count exactly only when it matters.
-    if (detail::table_bytes(blocks, blocks, o.angles) <= o.memory_budget_bytes) return lattice;
-    needed = detail::table_bytes(detail::count_lattice_points(mask, lattice), blocks, o.angles);
+    if (detail::table_bytes(blocks, blocks, cells, o.angles) <= o.memory_budget_bytes) {
+      return lattice;
+    }
+    needed =
+        detail::table_bytes(detail::count_lattice_points(mask, lattice), blocks, cells, o.angles);
     if (needed <= o.memory_budget_bytes) return lattice;
   }
   throw ConfigError("range table: a memory budget of " + megabytes(o.memory_budget_bytes) +
@@ -124,9 +129,9 @@ void RangeTable::Impl::build() {
     point_y.push_back(static_cast<float>(cell / static_cast<std::uint32_t>(width)) + 0.5F);
   }
   ranges.assign(points * angles, detail::kNoHit);
-  // One task per 32 directions: each fills a column per direction, then writes its own 64-byte
-  // run of every point's row, so no two tasks share a cache line and the result is the same for
-  // any thread count.
+  // One task per 32 directions: each fills a column per direction, then writes its own run of
+  // 32 entries (64 bytes) in every point's row, so tasks write disjoint entries, share at most
+  // the cache lines where their runs meet, and the result is the same for any thread count.
   par::for_each_chunk(angles, kAngleGroup, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint16_t> columns((end - begin) * points);
     detail::SweepScratch scratch;
@@ -143,7 +148,8 @@ void RangeTable::Impl::build() {
   stats = {.angles = options.angles,
            .lattice = layout.lattice,
            .points = points,
-           .bytes = detail::table_bytes(points, layout.slot_of_block.size(), options.angles),
+           .bytes = detail::table_bytes(points, layout.slot_of_block.size(), blocking.size(),
+                                        options.angles),
            .build_seconds =
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
            .units_per_cell = units};

@@ -57,10 +57,12 @@ std::size_t count_lattice_points(const CellMask& mask, int lattice) {
   return n;
 }
 
-std::size_t table_bytes(std::size_t points, std::size_t blocks, int angles) {
-  // Ranges (uint16 per point and angle), the point of each slot and the slot of each block.
+std::size_t table_bytes(std::size_t points, std::size_t blocks, std::size_t cells, int angles) {
+  // Ranges (uint16 per point and angle); per point its cell and its coordinates (two floats);
+  // the slot of each block; the blocking mask (a byte per cell) for the start rule.
   return points * static_cast<std::size_t>(angles) * sizeof(std::uint16_t) +
-         points * sizeof(std::uint32_t) + blocks * sizeof(std::uint32_t);
+         points * (sizeof(std::uint32_t) + 2 * sizeof(float)) + blocks * sizeof(std::uint32_t) +
+         cells;
 }
 
 TableLayout make_layout(const CellMask& mask, int lattice) {

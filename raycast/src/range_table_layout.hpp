@@ -36,8 +36,10 @@ struct TableLayout {
 /// Lattice points of a lattice without building it.
 [[nodiscard]] std::size_t count_lattice_points(const CellMask& mask, int lattice);
 
-/// Bytes of a table with `points` lattice points and `angles` directions, index included.
-[[nodiscard]] std::size_t table_bytes(std::size_t points, std::size_t blocks, int angles);
+/// Bytes a table holds: `points` lattice points at `angles` directions, its index over `blocks`
+/// blocks and its copy of the blocking state of `cells` cells.
+[[nodiscard]] std::size_t table_bytes(std::size_t points, std::size_t blocks, std::size_t cells,
+                                      int angles);
 
 /// Builds the lattice.
 [[nodiscard]] TableLayout make_layout(const CellMask& mask, int lattice);

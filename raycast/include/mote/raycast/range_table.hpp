@@ -32,7 +32,7 @@ struct RangeTableStats {
   int angles = 0;
   int lattice = 1;              ///< cells between lattice points (1: every cell)
   std::size_t points = 0;       ///< lattice points stored (those of non-blocking cells)
-  std::size_t bytes = 0;        ///< table plus cell index
+  std::size_t bytes = 0;        ///< everything the table holds: ranges, index, blocking mask
   double build_seconds = 0.0;   ///< wall clock of the sweep
   double units_per_cell = 8.0;  ///< fixed-point range units per cell
 };
