@@ -42,8 +42,9 @@ def load_cases(path):
     cases, machine = {}, {}
     for e in chosen:
         name = e.get("run_name", e["name"])
-        if e.get("error_occurred") or "/defaults:" in name or "/kld_min:" in name:
-            continue  # the mote-vs-nav2 pairs are read from the JSON directly
+        if (e.get("error_occurred") or "/defaults:" in name or "/kld_min:" in name
+                or "/ray_casting:" in name):
+            continue  # the mote-vs-nav2 and exact-vs-table pairs are read from the JSON directly
         if (m := NAME.match(name)) is not None:
             key = (m["model"], m["setting"], int(m["n"]), int(m["beams"]), int(m["threads"]))
             cases[key] = e

@@ -27,7 +27,8 @@ std::string Case::name() const {
   return std::string("BM_Localizer_Update/") + model_name(model) + "/" + setting_name(setting) +
          "/n:" + std::to_string(particles) + "/beams:" + std::to_string(beams) +
          "/threads:" + std::to_string(threads) + (nav2 ? "/defaults:nav2" : "") +
-         (kld_min > 0 ? "/kld_min:" + std::to_string(kld_min) : "");
+         (kld_min > 0 ? "/kld_min:" + std::to_string(kld_min) : "") +
+         (table ? "/ray_casting:table" : "");
 }
 
 std::vector<Case> all_cases() {
@@ -54,6 +55,18 @@ std::vector<Case> nav2_baseline_cases() {
       for (const bool nav2 : {false, true}) {
         cases.push_back({model, Setting::kTracking, particles, 60, 2, nav2});
       }
+    }
+  }
+  return cases;
+}
+
+std::vector<Case> range_table_cases() {
+  std::vector<Case> cases;
+  for (const int particles : {10'000, 100'000}) {
+    for (const bool table : {false, true}) {
+      Case c{LaserModel::kBeam, Setting::kTracking, particles, 60, 2};
+      c.table = table;
+      cases.push_back(c);
     }
   }
   return cases;

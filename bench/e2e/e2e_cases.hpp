@@ -30,10 +30,12 @@ struct Case {
   /// 0: the particle count is fixed at `particles` (KLD cannot change it). Otherwise
   /// KLD-adaptive: min_particles = kld_min, max_particles = particles.
   int kld_min = 0;
+  /// Beam model only: ranges from the range table (ray_casting: table) instead of Embree.
+  bool table = false;
 
   /// "BM_Localizer_Update/<model>/<setting>/n:<particles>/beams:<beams>/threads:<threads>",
   /// with "/defaults:nav2" appended for the nav2 baseline and "/kld_min:<kld_min>" for the
-  /// KLD-adaptive cases (n is then max_particles).
+  /// KLD-adaptive cases (n is then max_particles) and "/ray_casting:table" for the table.
   [[nodiscard]] std::string name() const;
 };
 
@@ -44,6 +46,10 @@ struct Case {
 /// The nav2-defaults twins of the tracking cases at 10k and 100k particles, 60 beams,
 /// 2 threads, for both models.
 [[nodiscard]] std::vector<Case> nav2_baseline_cases();
+
+/// The beam model's tracking cases at 10k and 100k particles, 60 beams, 2 threads, with exact
+/// Embree casting and with the range table, side by side (issue 19).
+[[nodiscard]] std::vector<Case> range_table_cases();
 
 /// KLD-adaptive twins (min 500, max n) of the headline cases, 60 beams, 2 threads: likelihood
 /// field 100k and 1M, beam model 10k, tracking and global.

@@ -1,21 +1,25 @@
-// Rays per second for the Embree caster (16-ray packets and single rays) against the exact grid
-// walk, on the Intel and Willow maps, for tracking-like and global particle sets, on 1 and 2
-// threads. Run: build-raycast/bench/raycast/bench_raycast
+// Rays per second for the Embree caster (16-ray packets and single rays) and the range table
+// against the exact grid walk, on the Intel and Willow maps, for tracking-like and global
+// particle sets, on 1 and 2 threads; and the range table's build time on Intel and on a
+// generated 4000 x 4000 map. Run: build-raycast/bench/raycast/bench_raycast
 // Arguments of every case: map (0 Intel, 1 Willow), particles (0 tracking, 1 global), threads.
 
 #include <benchmark/benchmark.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "mote/maps/map_loader.hpp"
 #include "mote/raycast/grid_ray_caster.hpp"
+#include "mote/raycast/range_table.hpp"
 #include "mote/raycast/ray_caster.hpp"
 #include "mote_bench/data.hpp"
 
@@ -75,6 +79,65 @@ const mote::OccupancyGrid* grid_for(int map) {
   return slot.get();
 }
 
+/// A 4000 x 4000 map of 5 cm cells, as bench_maps generates it: unknown border, free interior,
+/// random rooms and walls.
+mote::OccupancyGrid big_grid() {
+  constexpr std::size_t n = 4000;
+  std::vector<mote::CellState> cells(n * n, mote::CellState::kUnknown);
+  const std::size_t margin = n / 20;
+  for (std::size_t r = margin; r < n - margin; ++r) {
+    std::fill(cells.begin() + static_cast<long>(r * n + margin),
+              cells.begin() + static_cast<long>(r * n + n - margin), mote::CellState::kFree);
+  }
+  std::mt19937 rng(42);
+  std::uniform_int_distribution<std::size_t> pos(margin, n - margin - 1);
+  auto wall = [&](std::size_t r0, std::size_t c0, std::size_t r1, std::size_t c1) {
+    for (std::size_t r = r0; r <= std::min(r1, n - 1); ++r) {
+      for (std::size_t c = c0; c <= std::min(c1, n - 1); ++c) {
+        cells[r * n + c] = mote::CellState::kOccupied;
+      }
+    }
+  };
+  for (std::size_t k = 0; k < n / 8; ++k) {
+    const std::size_t r = pos(rng), c = pos(rng), len = pos(rng) / 8;
+    if (k % 3 == 0) {
+      wall(r, c, r + 1, c + len), wall(r + len, c, r + len + 1, c + len);
+      wall(r, c, r + len, c + 1), wall(r, c + len, r + len + 1, c + len + 1);
+    } else if (k % 3 == 1) {
+      wall(r, c, r + 2, c + len);
+    } else {
+      wall(r, c, r + len, c + 2);
+    }
+  }
+  return {static_cast<int>(n), static_cast<int>(n), 0.05, mote::Pose2{-100.0, -100.0, 0.0},
+          std::move(cells)};
+}
+
+/// The range table of a map, built once per process (default options: 512 angles, 256 MB).
+const mote::RangeTable* table_for(int map) {
+  static std::map<int, std::unique_ptr<mote::RangeTable>> cache;
+  auto& slot = cache[map];
+  if (!slot) {
+    const mote::OccupancyGrid* grid = grid_for(map);
+    if (grid == nullptr) return nullptr;
+    slot = std::make_unique<mote::RangeTable>(*grid);
+  }
+  return slot.get();
+}
+
+/// The range table, built once per map outside the timed loop.
+struct TableCaster {
+  const mote::RangeTable* table;
+  TableCaster(const mote::OccupancyGrid& grid, const mote::RayCastOptions&) {
+    for (int map : {0, 1}) {
+      if (grid_for(map) == &grid) table = table_for(map);
+    }
+  }
+  void cast(const mote::RayBatch& batch, std::span<float> ranges) const {
+    table->cast(batch, ranges);
+  }
+};
+
 template <class Caster>
 void run_cast(benchmark::State& state, const mote::RayCastOptions& options) {
   const mote::OccupancyGrid* grid = grid_for(static_cast<int>(state.range(0)));
@@ -108,6 +171,31 @@ void BM_RayCast_Embree1(benchmark::State& state) {
 /// The baseline: the exact grid walk (test oracle).
 void BM_RayCast_GridWalk(benchmark::State& state) {
   run_cast<mote::GridRayCaster>(state, mote::RayCastOptions{});
+}
+
+void BM_RayCast_Table(benchmark::State& state) {
+  run_cast<TableCaster>(state, mote::RayCastOptions{});
+}
+
+/// Table build time with the default options (512 angles, 256 MB budget): map 0 Intel,
+/// 2 the generated 4000 x 4000 map, which takes a coarser lattice to fit.
+void BM_RangeTable_Build(benchmark::State& state) {
+  const int map = static_cast<int>(state.range(0));
+  static const mote::OccupancyGrid big = big_grid();
+  const mote::OccupancyGrid* grid = map == 2 ? &big : grid_for(map);
+  if (grid == nullptr) {
+    state.SkipWithError("recorded map not found (set MOTE_DATA_DIR)");
+    return;
+  }
+  tbb::task_arena arena(static_cast<int>(state.range(1)));
+  mote::RangeTableStats stats;
+  for (auto _ : state) {
+    arena.execute([&] { stats = mote::RangeTable(*grid).stats(); });
+  }
+  state.counters["MB"] = static_cast<double>(stats.bytes) / 1048576.0;
+  state.counters["lattice"] = stats.lattice;
+  state.counters["angles"] = stats.angles;
+  state.SetLabel(map == 0 ? "intel" : map == 1 ? "willow" : "4000x4000");
 }
 
 /// A fixed compute loop on 1 and 2 threads: how many cores the machine gave right now
@@ -146,6 +234,14 @@ BENCHMARK(BM_Machine_ComputeLoop)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark
 BENCHMARK(BM_RayCast_Embree16)->Apply(cases);
 BENCHMARK(BM_RayCast_Embree1)->Apply(cases);
 BENCHMARK(BM_RayCast_GridWalk)->Apply(cases);
+BENCHMARK(BM_RayCast_Table)->Apply(cases);
+BENCHMARK(BM_RangeTable_Build)
+    ->ArgNames({"map", "threads"})
+    ->Args({0, 2})
+    ->Args({2, 2})
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Machine_ComputeLoop)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

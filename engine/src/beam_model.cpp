@@ -4,8 +4,25 @@
 
 namespace mote {
 
-BeamModel::BeamModel(const OccupancyGrid& grid, const BeamModelParams& params)
-    : params_(params), caster_(grid, RayCastOptions{.unknown_blocks = params.unknown_blocks}) {}
+BeamModel::BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
+                     const std::optional<RangeTableOptions>& table)
+    : params_(params) {
+  if (table) {
+    RangeTableOptions options = *table;
+    options.unknown_blocks = params.unknown_blocks;
+    table_.emplace(grid, options);
+  } else {
+    exact_.emplace(grid, RayCastOptions{.unknown_blocks = params.unknown_blocks});
+  }
+}
+
+void BeamModel::expected_ranges(const RayBatch& batch, std::span<float> ranges) const {
+  if (table_) {
+    table_->cast(batch, ranges);
+  } else {
+    exact_->cast(batch, ranges);
+  }
+}
 
 void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
                       std::size_t end) const {
@@ -21,7 +38,7 @@ void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::
                        .beam_angles = beams.angle,
                        .sensor_offset = beams.sensor_pose,
                        .max_range = beams.range_max};
-  caster_.cast(batch, expected);
+  expected_ranges(batch, expected);
 
   add_beam_log_likelihoods(beams.range, beams.range_max, expected, params_,
                            {particles.logw + begin, count});

@@ -111,6 +111,14 @@ const std::vector<Key>& keys() {
         field<double>("global_particles_per_bin", kNum, &LocalizerConfig::global_particles_per_bin),
         field<double>("recovery_fit_band", kNum, &LocalizerConfig::recovery_fit_band),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
+        enum_key("ray_casting", "exact or table",
+                 [](LocalizerConfig& c, const std::string& s) {
+                   if (s != "exact" && s != "table")
+                     throw YAML::BadConversion(YAML::Mark::null_mark());
+                   c.ray_casting = s == "table" ? RayCasting::kTable : RayCasting::kExact;
+                 }),
+        field<int>("range_table_angles", kInt, &LocalizerConfig::range_table_angles),
+        field<double>("range_table_budget_mb", kNum, &LocalizerConfig::range_table_budget_mb),
         field<int>("threads", kInt, &LocalizerConfig::threads),
         field<std::uint64_t>("seed", kInt, &LocalizerConfig::seed),
         field<std::size_t>("grain", kInt, &LocalizerConfig::grain),

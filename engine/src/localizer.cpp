@@ -172,4 +172,9 @@ const UpdateStats& Localizer::last_update() const noexcept { return impl_->stats
 const LocalizerConfig& Localizer::config() const noexcept { return impl_->config; }
 int Localizer::threads() const noexcept { return impl_->executor.threads(); }
 
+const RangeTable* Localizer::range_table() const noexcept {
+  const auto* beam = impl_->sensor ? std::get_if<BeamModel>(impl_->sensor.get()) : nullptr;
+  return beam != nullptr ? beam->range_table() : nullptr;
+}
+
 }  // namespace mote

@@ -83,6 +83,11 @@ void validate_sensor(const LocalizerConfig& c) {
           "tempering_ess_fraction", "a fraction in (0, 1)");
   require(std::isfinite(c.laser_min_range), "laser_min_range", "a finite number");
   require(std::isfinite(c.laser_max_range), "laser_max_range", "a finite number");
+  require(c.range_table_angles >= 32 && c.range_table_angles % 32 == 0, "range_table_angles",
+          "a positive multiple of 32");
+  // Up to 1 TB: beyond any machine this runs on, and safe to convert to bytes.
+  require(finite_positive(c.range_table_budget_mb) && c.range_table_budget_mb <= 1048576.0,
+          "range_table_budget_mb", "a positive number of megabytes, at most 1048576");
 }
 
 }  // namespace

@@ -54,6 +54,9 @@ namespace {
   X(likelihood_tempering) \
   X(tempering_ess_fraction) \
   X(unknown_cells_block_rays) \
+  X(ray_casting) \
+  X(range_table_angles) \
+  X(range_table_budget_mb) \
   X(unmapped_obstacle_filter) \
   X(threads) \
   X(seed) \
@@ -84,6 +87,9 @@ void bind_enums(py::module_& m) {
       .value("DIFF", OdomModel::kDiff)
       .value("OMNI", OdomModel::kOmni)
       .value("ACKERMANN", OdomModel::kAckermann);
+  py::enum_<RayCasting>(m, "RayCasting", "Where the beam model's expected ranges come from.")
+      .value("EXACT", RayCasting::kExact)
+      .value("TABLE", RayCasting::kTable);
 }
 
 std::string config_repr(const LocalizerConfig& c) {

@@ -112,6 +112,10 @@ ReplayResult run_replay(const ReplayOptions& options) {
   auto source = open_scan_log(options.log, options.reader);
   Localizer filter(result.map, options.config);
   result.threads = filter.threads();
+  if (const RangeTable* table = filter.range_table()) {
+    result.range_table =
+        summarize_range_table(result.map, *table, options.config.unknown_cells_block_rays);
+  }
 
   const auto start = Clock::now();
   run_frames(result, filter, *source, options, sorted_reference);

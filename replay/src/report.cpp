@@ -228,6 +228,7 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   write_outcomes(json, result);
   write_errors(json, result);
   write_kidnap(json, result);
+  if (result.range_table) write_range_table_json(json, *result.range_table);
   if (options.profile) write_profile_json(json, profile_run(result));
   json.end_object();
 }
@@ -248,6 +249,7 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   }
   row(out, "laser max range", range);
   row(out, "skipped records", std::to_string(result.reader.records_skipped));
+  if (result.range_table) print_range_table(out, *result.range_table);
   if (options.profile) {
     print_profile(out, profile_run(result));
     row(out, "log reading",

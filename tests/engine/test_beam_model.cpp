@@ -57,13 +57,13 @@ TEST(BeamModelWeigh, AddsTheScalarScanLikelihoodOfTheCastRangesToItsRange) {
   model.weigh(beams, particles, begin, end);
 
   std::vector<float> expected((end - begin) * beams.size());
-  model.caster().cast({.x = {particles.x + begin, end - begin},
-                       .y = {particles.y + begin, end - begin},
-                       .theta = {particles.theta + begin, end - begin},
-                       .beam_angles = beams.angle,
-                       .sensor_offset = beams.sensor_pose,
-                       .max_range = beams.range_max},
-                      expected);
+  model.expected_ranges({.x = {particles.x + begin, end - begin},
+                         .y = {particles.y + begin, end - begin},
+                         .theta = {particles.theta + begin, end - begin},
+                         .beam_angles = beams.angle,
+                         .sensor_offset = beams.sensor_pose,
+                         .max_range = beams.range_max},
+                        expected);
   for (std::size_t i = 0; i < particles.size(); ++i) {
     SCOPED_TRACE(testing::Message() << "particle " << i);
     if (i < begin || i >= end) {

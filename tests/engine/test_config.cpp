@@ -202,3 +202,24 @@ TEST(ParseConfig, SizeLimitsNameTheKeyAndLine) {
 
 }  // namespace
 }  // namespace mote
+
+namespace mote {
+namespace {
+
+// Issue 19: the beam model's ray_casting switch and the range table's angles and budget.
+TEST(ParseConfig, RayCastingSelectsExactOrTable) {
+  EXPECT_EQ(LocalizerConfig{}.ray_casting, RayCasting::kExact) << "exact stays the default";
+  const LoadedConfig loaded = parse_config(
+      "ray_casting: table\nrange_table_angles: 256\nrange_table_budget_mb: 64\n", "t.yaml");
+  EXPECT_EQ(loaded.config.ray_casting, RayCasting::kTable);
+  EXPECT_EQ(loaded.config.range_table_angles, 256);
+  EXPECT_DOUBLE_EQ(loaded.config.range_table_budget_mb, 64.0);
+  EXPECT_TRUE(loaded.warnings.empty());
+  EXPECT_EQ(parse_config("ray_casting: exact\n", "e.yaml").config.ray_casting, RayCasting::kExact);
+  expect_input_error("ray_casting: fast\n", "line 1, key 'ray_casting': expected exact or table");
+  expect_input_error("range_table_angles: 100\n", "range_table_angles");
+  expect_input_error("range_table_budget_mb: 0\n", "range_table_budget_mb");
+}
+
+}  // namespace
+}  // namespace mote

@@ -191,6 +191,23 @@ TEST(Cli, InfoDescribesRos2AndCarmenLogs) {
   EXPECT_EQ(lines(bad.err), 1) << bad.err;
 }
 
+// Issue 19: `mote info --map` builds the range table and prints its layout, memory, build time
+// and error against Embree; a budget too small for any table is a one-line error naming the
+// size needed.
+TEST(Cli, InfoMapReportsTheRangeTable) {
+  const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
+  const Outcome o = mote("info --map '" + map.string() + "' --range-table-angles 64");
+  ASSERT_EQ(o.status, 0) << o.err;
+  for (const char* text : {"range table           64 angles, lattice 1", "memory", "build",
+                           "% within 1 cell", "error (cells)"}) {
+    EXPECT_NE(o.out.find(text), std::string::npos) << text << " in\n" << o.out;
+  }
+  const Outcome tiny = mote("info --map '" + map.string() + "' --range-table-budget-mb 0.001");
+  EXPECT_EQ(tiny.status, 1) << tiny.out;
+  EXPECT_EQ(lines(tiny.err), 1) << tiny.err;
+  EXPECT_NE(tiny.err.find("needs"), std::string::npos) << tiny.err;
+}
+
 // An MCAP file cut short (here: the recording's zstd file cut in its middle, as a crash while
 // recording leaves it) replays up to its last complete chunk, with one warning on stderr.
 TEST(Cli, CutMcapReplaysWithAWarning) {

@@ -108,6 +108,35 @@ void expect_intel_defaults(const std::string& model, double ate_m, double headin
   EXPECT_LE(json_number(report, "heading_rmse_deg"), heading_deg);
 }
 
+// Issue 19: the beam model with the range table tracks Intel within 5% of the exact beam
+// model's ATE (same defaults, seed and particles; replay/configs/beam-table.yaml changes only
+// where the expected ranges come from), and report.json says what the table cost.
+TEST(Cli, IntelBeamModelWithTheRangeTableTracksAsExactCasting) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  std::array<double, 2> ate{};
+  for (const bool table : {false, true}) {
+    const fs::path out = scratch(table ? "intel-beam-table" : "intel-beam-exact");
+    const std::string config =
+        table ? " --config '" +
+                    (fs::path(MOTE_SOURCE_DIR) / "replay/configs/beam-table.yaml").string() + "'"
+              : std::string();
+    const Outcome o =
+        mote("replay --map '" + yaml.string() + "' --log '" + (data / "intel.clf").string() +
+             "' --reference '" + (data / "intel.gt.tum").string() +
+             "' --particles 5000 --model beam --quiet" + config + " --out '" + out.string() + "'");
+    ASSERT_EQ(o.status, 0) << o.err;
+    const std::string report = slurp(out / "report.json");
+    ate[table ? 1 : 0] = json_number(report, "ate_rmse_m");
+    EXPECT_EQ(report.find("\"range_table\"") != std::string::npos, table);
+    if (table) {
+      EXPECT_GT(json_number(report, "within_one_cell"), 0.9);
+      EXPECT_LE(json_number(report, "bytes"), 256.0 * 1048576.0);
+    }
+  }
+  EXPECT_LE(ate[1], 1.05 * ate[0]) << "exact " << ate[0] << " m, table " << ate[1] << " m";
+}
+
 TEST(Cli, IntelDefaultsTrackWithTheLikelihoodField) {
   expect_intel_defaults("likelihood_field", 0.06, 1.0);
 }

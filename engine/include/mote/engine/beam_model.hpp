@@ -1,15 +1,18 @@
 #pragma once
 /// \file
 /// The beam model (Thrun et al., table 6.1): every selected beam is compared with the range an
-/// Embree ray cast from the particle's sensor pose expects.
+/// Embree ray cast from the particle's sensor pose expects, or (ray_casting: table) the range a
+/// precomputed RangeTable holds for that pose.
 
 #include <cstddef>
+#include <optional>
 #include <span>
 
 #include "mote/engine/beams.hpp"
 #include "mote/engine/particles.hpp"
 #include "mote/engine/sensor_model.hpp"
 #include "mote/maps/occupancy_grid.hpp"
+#include "mote/raycast/range_table.hpp"
 #include "mote/raycast/ray_caster.hpp"
 
 namespace mote {
@@ -27,19 +30,27 @@ struct BeamModelParams {
 /// wall short of z_max are penalized for it.
 class BeamModel {
  public:
-  /// Builds the Embree scene of the grid.
-  BeamModel(const OccupancyGrid& grid, const BeamModelParams& params);
+  /// Builds the Embree scene of the grid, or, when `table` is set, a RangeTable with those
+  /// options (their unknown_blocks replaced by params.unknown_blocks).
+  BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
+            const std::optional<RangeTableOptions>& table = std::nullopt);
 
   /// Adds tau * log p(z | x_i) to particles.logw[i] for i in [begin, end). Reentrant.
   void weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
              std::size_t end) const;
 
   [[nodiscard]] const BeamModelParams& params() const noexcept { return params_; }
-  [[nodiscard]] const RayCaster& caster() const noexcept { return caster_; }
+  /// Fills the expected ranges of a batch from whichever source the params chose.
+  void expected_ranges(const RayBatch& batch, std::span<float> ranges) const;
+  /// The range table, or nullptr under exact casting.
+  [[nodiscard]] const RangeTable* range_table() const noexcept {
+    return table_ ? &*table_ : nullptr;
+  }
 
  private:
   BeamModelParams params_;
-  RayCaster caster_;
+  std::optional<RayCaster> exact_;
+  std::optional<RangeTable> table_;
 };
 
 static_assert(SensorModel<BeamModel>);

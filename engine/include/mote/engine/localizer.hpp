@@ -41,6 +41,8 @@
 
 namespace mote {
 
+class RangeTable;
+
 /// What the filter believes: the whole set and its clusters (connected occupied KLD bins).
 struct LocalizationEstimate {
   PoseEstimate overall;                ///< the whole particle set
@@ -140,6 +142,9 @@ class Localizer {
   [[nodiscard]] const LocalizerConfig& config() const noexcept;
   /// Threads the filter runs on.
   [[nodiscard]] int threads() const noexcept;
+  /// The beam model's range table (ray_casting: table), or nullptr (its stats() say what it
+  /// cost; mote/raycast/range_table.hpp).
+  [[nodiscard]] const RangeTable* range_table() const noexcept;
 
  private:
   struct Impl;

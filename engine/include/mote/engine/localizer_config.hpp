@@ -21,6 +21,12 @@ enum class LaserModel : std::uint8_t {
   kBeam,             ///< Thrun table 6.1 with ray-cast expected ranges (amcl "beam")
 };
 
+/// Where the beam model's expected ranges come from.
+enum class RayCasting : std::uint8_t {
+  kExact,  ///< an Embree ray per particle and beam
+  kTable,  ///< a precomputed range table (RangeTable), built when the Localizer is
+};
+
 /// How the likelihood-field model combines beams.
 enum class LikelihoodCombination : std::uint8_t {
   kProduct,      ///< the textbook product, summed in the log domain (Thrun table 6.3)
@@ -123,6 +129,13 @@ struct LocalizerConfig {
   /// Adaptive tempering: the scan may lower the ESS to this share of its value before the scan.
   double tempering_ess_fraction = 0.1;
   bool unknown_cells_block_rays = true;  ///< beam model: unknown cells stop rays (amcl)
+  /// Beam model: exact Embree casting or a precomputed range table (range_table.hpp; its
+  /// accuracy and cost are in BENCHMARKS.md, "Range table").
+  RayCasting ray_casting = RayCasting::kExact;
+  /// Range table: directions over the full circle, a positive multiple of 32.
+  int range_table_angles = 512;
+  /// Range table: memory budget (MB); a coarser lattice is used when the table does not fit.
+  double range_table_budget_mb = 256.0;
   /// Once the belief has settled on one place, leave out, for every particle alike, the beams
   /// that most of it finds blocked by something the map does not hold (people, a crowd, furniture):
   /// the reading ends well short of the first mapped wall along the beam (Fox et al. 1999's

@@ -17,6 +17,7 @@
 #include "mote/engine/localizer_config.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 #include "mote/replay/metrics.hpp"
+#include "mote/replay/range_table_report.hpp"
 #include "mote/replay/scan_source.hpp"
 #include "mote/replay/tum.hpp"
 
@@ -102,6 +103,7 @@ struct ReplayResult {
   std::vector<Pose2> final_particles;      ///< the particle cloud after the last scan
   double wall_s = 0.0;                     ///< s, wall-clock time of the whole loop
   double read_s = 0.0;                     ///< s of wall_s spent in the log reader's next()
+  std::optional<RangeTableSummary> range_table;  ///< the beam model's table (ray_casting: table)
 };
 
 /// Loads the map, log and reference, runs the filter over every scan and measures the result.

@@ -1,0 +1,306 @@
+#include "mote/raycast/range_table.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "grid_walk.hpp"
+#include "mote/core/error.hpp"
+#include "mote/core/parallel.hpp"
+#include "range_table_layout.hpp"
+#include "range_table_sweep.hpp"
+#include "ray_setup.hpp"
+
+namespace mote {
+
+namespace {
+
+constexpr int kAngleGroup = 32;  // uint16 entries per 64-byte line: one build task's directions
+constexpr int kMaxLattice = 32;
+constexpr double kMaxUnitsPerCell = 16.0;
+
+void check_options(const RangeTableOptions& o) {
+  if (o.angles < kAngleGroup || o.angles % kAngleGroup != 0) {
+    throw ConfigError("range table: angles must be a positive multiple of 32, got " +
+                      std::to_string(o.angles));
+  }
+}
+
+std::string megabytes(std::size_t bytes) {
+  return std::to_string((bytes + (std::size_t{1} << 20U) - 1) >> 20U) + " MB";
+}
+
+/// The finest lattice whose table fits the budget; ConfigError naming the coarsest's size.
+int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o) {
+  std::size_t needed = 0;
+  const std::size_t cells =
+      static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height);
+  for (int lattice = 1; lattice <= kMaxLattice; ++lattice) {
+    const auto blocks = static_cast<std::size_t>((mask.width + lattice - 1) / lattice) *
+                        static_cast<std::size_t>((mask.height + lattice - 1) / lattice);
+    // Every block holding a point is an upper bound; count exactly only when it matters.
+    if (detail::table_bytes(blocks, blocks, cells, o.angles) <= o.memory_budget_bytes) {
+      return lattice;
+    }
+    needed =
+        detail::table_bytes(detail::count_lattice_points(mask, lattice), blocks, cells, o.angles);
+    if (needed <= o.memory_budget_bytes) return lattice;
+  }
+  throw ConfigError("range table: a memory budget of " + megabytes(o.memory_budget_bytes) +
+                    " holds no table of this map at " + std::to_string(o.angles) +
+                    " angles; the coarsest lattice (" + std::to_string(kMaxLattice) +
+                    " cells) needs " + megabytes(needed));
+}
+
+/// Fixed-point units per cell: as fine as 16 bits allow for the map's diagonal, at most 1/16.
+double units_for(int width, int height) {
+  const double diagonal = std::hypot(double(width), double(height)) + 2.0;
+  const double units =
+      std::min(kMaxUnitsPerCell, std::floor(double(detail::kNoHit - 1) / diagonal));
+  if (units < 1.0) {
+    throw ConfigError("range table: the map is too large for 16-bit ranges (diagonal " +
+                      std::to_string(diagonal) + " cells, at most 65534)");
+  }
+  return units;
+}
+
+}  // namespace
+
+/// Lattice points near a sensor and their offsets from it (cells). Always nine entries, so the
+/// choice among them is a fixed, branch-free loop; entry 0 is the sensor's own block and
+/// missing neighbours carry an all-ones mask that keeps them from being chosen.
+struct Candidates {
+  static constexpr std::size_t kCount = 9;
+  std::array<std::uint32_t, kCount> slot{};
+  std::array<float, kCount> wx{};
+  std::array<float, kCount> wy{};
+  std::array<std::uint32_t, kCount> missing{};
+};
+
+struct RangeTable::Impl {
+  int width = 0;
+  int height = 0;
+  float resolution = 1.0F;
+  Pose2 origin;
+  RangeTableOptions options;
+  std::vector<std::uint8_t> blocking;
+  detail::TableLayout layout;
+  std::vector<std::uint16_t> ranges;  ///< ranges[slot * angles + a]
+  std::vector<float> cos_a;           ///< direction of table angle a in the grid frame
+  std::vector<float> sin_a;
+  std::vector<float> point_x;  ///< lattice point of each slot, in cells
+  std::vector<float> point_y;
+  RangeTableStats stats;
+
+  [[nodiscard]] detail::CellMask mask() const noexcept {
+    return {width, height, resolution, blocking.data()};
+  }
+  void build();
+  /// The lattice points of the sensor's block and its 8 neighbours, for a sensor at grid frame
+  /// point (gx, gy) m in on-map cell (i, j).
+  [[nodiscard]] Candidates candidates(int i, int j, double gx, double gy) const noexcept;
+  /// Range (m) along table angle index a_real (fractional, in [0, 2 * angles)).
+  [[nodiscard]] [[gnu::always_inline]] inline float lookup(const Candidates& c, double a_real,
+                                                           float max_range) const noexcept;
+  [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
+};
+
+void RangeTable::Impl::build() {
+  const auto start = std::chrono::steady_clock::now();
+  const detail::CellMask m = mask();
+  layout = detail::make_layout(m, choose_lattice(m, options));
+  const std::size_t points = layout.points();
+  const auto angles = static_cast<std::size_t>(options.angles);
+  const double units = units_for(width, height);
+  for (std::size_t a = 0; a < angles; ++a) {
+    const double phi =
+        2.0 * std::numbers::pi * static_cast<double>(a) / static_cast<double>(angles);
+    cos_a.push_back(static_cast<float>(detail::snap_direction(std::cos(phi))));
+    sin_a.push_back(static_cast<float>(detail::snap_direction(std::sin(phi))));
+  }
+  for (const std::uint32_t cell : layout.cell_of_slot) {
+    point_x.push_back(static_cast<float>(cell % static_cast<std::uint32_t>(width)) + 0.5F);
+    point_y.push_back(static_cast<float>(cell / static_cast<std::uint32_t>(width)) + 0.5F);
+  }
+  ranges.assign(points * angles, detail::kNoHit);
+  // One task per 32 directions: each fills a column per direction, then writes its own run of
+  // 32 entries (64 bytes) in every point's row, so tasks write disjoint entries, share at most
+  // the cache lines where their runs meet, and the result is the same for any thread count.
+  par::for_each_chunk(angles, kAngleGroup, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::uint16_t> columns((end - begin) * points);
+    detail::SweepScratch scratch;
+    for (std::size_t a = begin; a < end; ++a) {
+      detail::sweep_direction(m, point_x, point_y, layout.lattice, cos_a[a], sin_a[a], units,
+                              scratch, {columns.data() + (a - begin) * points, points});
+    }
+    for (std::size_t p = 0; p < points; ++p) {
+      for (std::size_t a = begin; a < end; ++a) {
+        ranges[p * angles + a] = columns[(a - begin) * points + p];
+      }
+    }
+  });
+  stats = {.angles = options.angles,
+           .lattice = layout.lattice,
+           .points = points,
+           .bytes = detail::table_bytes(points, layout.slot_of_block.size(), blocking.size(),
+                                        options.angles),
+           .build_seconds =
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+           .units_per_cell = units};
+}
+
+Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) const noexcept {
+  Candidates c;
+  c.missing.fill(0xFFFFFFFFU);
+  const int bi = i / layout.lattice;
+  const int bj = j / layout.lattice;
+  const auto ox = static_cast<float>(gx / resolution);
+  const auto oy = static_cast<float>(gy / resolution);
+  std::size_t k = 1;
+  for (int nj = bj - 1; nj <= bj + 1; ++nj) {
+    for (int ni = bi - 1; ni <= bi + 1; ++ni) {
+      if (ni < 0 || nj < 0 || ni >= layout.blocks_w || nj >= layout.blocks_h) continue;
+      const std::uint32_t slot =
+          layout.slot_of_block[static_cast<std::size_t>(nj) *
+                                   static_cast<std::size_t>(layout.blocks_w) +
+                               static_cast<std::size_t>(ni)];
+      if (slot == detail::kNoSlot) continue;
+      const std::size_t at = ni == bi && nj == bj ? 0 : k++;
+      c.slot[at] = slot;
+      c.wx[at] = point_x[slot] - ox;
+      c.wy[at] = point_y[slot] - oy;
+      c.missing[at] = 0;
+    }
+  }
+  return c;
+}
+
+inline float RangeTable::Impl::lookup(const Candidates& c, double a_real,
+                                      float max_range) const noexcept {
+  const int n = options.angles;
+  int a = static_cast<int>(a_real + 0.5);
+  if (a >= n) a -= n;
+  if (a < 0 || a >= n) a = ((a % n) + n) % n;
+  const auto ua = static_cast<std::size_t>(a);
+  const float dx = cos_a[ua];
+  const float dy = sin_a[ua];
+  // The lattice point whose ray along this direction passes closest to the sensor stands for it:
+  // its range, moved along the ray by its offset, is the sensor's (sideways offsets are what a
+  // table cannot correct: they change which wall corner a ray grazes).
+  // The argmin as a min over keys: the lateral offset's bits (a non-negative float orders as
+  // its bits) with the index in the 4 lowest, so the loop has no branch and no serial chain;
+  // ties within 2^-19 of each other go to the lower index, the sensor's own point first.
+  std::uint32_t best_key = 0xFFFFFFFFU;
+  for (std::size_t k = 0; k < Candidates::kCount; ++k) {
+    const float lateral = std::abs(dx * c.wy[k] - dy * c.wx[k]);
+    const std::uint32_t key = (std::bit_cast<std::uint32_t>(lateral) & ~0xFU) |
+                              static_cast<std::uint32_t>(k) | c.missing[k];
+    best_key = std::min(best_key, key);
+  }
+  std::size_t best = best_key & 0xFU;
+  const auto entry = [&](std::size_t k) {
+    return ranges[static_cast<std::size_t>(c.slot[k]) * static_cast<std::size_t>(n) + ua];
+  };
+  std::uint16_t v = entry(best);
+  float along = dx * c.wx[best] + dy * c.wy[best];
+  const float inv_units = 1.0F / static_cast<float>(stats.units_per_cell);
+  if (v != detail::kNoHit && static_cast<float>(v) * inv_units + along < 0.0F) {
+    // The neighbour's wall lies behind the sensor: fall back to the sensor's own point.
+    best = 0;
+    v = entry(best);
+    along = dx * c.wx[best] + dy * c.wy[best];
+  }
+  if (v == detail::kNoHit) return max_range;
+  return std::clamp((static_cast<float>(v) * inv_units + along) * resolution, 0.0F, max_range);
+}
+
+float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
+                                 float max_range) const {
+  const detail::CellMask m = mask();
+  const detail::GridRay ray = m.prepare(grid_ray);
+  if (m.blocks_start(ray.ox, ray.oy)) return 0.0F;
+  const int i = m.cell_of(ray.ox, width);
+  const int j = m.cell_of(ray.oy, height);
+  if (i < 0 || j < 0 || i >= width || j >= height) return detail::walk_grid(m, ray, max_range);
+  const double n = options.angles;
+  double a_real = angle * n / (2.0 * std::numbers::pi);
+  a_real -= n * std::floor(a_real / n);
+  return lookup(candidates(i, j, ray.ox, ray.oy), a_real, max_range);
+}
+
+RangeTable::RangeTable(const OccupancyGrid& grid, RangeTableOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  check_options(options);
+  impl_->width = grid.width();
+  impl_->height = grid.height();
+  impl_->resolution = static_cast<float>(grid.resolution());
+  impl_->origin = grid.origin();
+  impl_->options = options;
+  impl_->blocking = detail::blocking_mask(grid, options.unknown_blocks);
+  impl_->build();
+}
+
+RangeTable::~RangeTable() = default;
+RangeTable::RangeTable(RangeTable&&) noexcept = default;
+RangeTable& RangeTable::operator=(RangeTable&&) noexcept = default;
+
+const RangeTableStats& RangeTable::stats() const noexcept { return impl_->stats; }
+
+void RangeTable::cast(const RayBatch& batch, std::span<float> ranges) const {
+  const Impl& t = *impl_;
+  const detail::GridFrame frame(t.origin);
+  const detail::CellMask m = t.mask();
+  const detail::BatchRays rays(frame, m, batch, ranges.size());
+  const std::size_t beams = rays.beams();
+  const double per_rad = t.options.angles / (2.0 * std::numbers::pi);
+  std::vector<double> beam_index(beams);
+  const auto wrap = [n = double(t.options.angles)](double index) {
+    return index - n * std::floor(index / n);  // into [0, n), so heading + beam stays in [0, 2n)
+  };
+  for (std::size_t b = 0; b < beams; ++b) beam_index[b] = wrap(batch.beam_angles[b] * per_rad);
+  par::for_each_chunk(
+      rays.particles(), t.options.particle_grain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t p = begin; p < end; ++p) {
+          const detail::SensorFrame s = rays.sensor(p);
+          float* out = ranges.data() + p * beams;
+          if (!s.finite) {
+            std::fill(out, out + beams, std::numeric_limits<float>::quiet_NaN());
+            continue;
+          }
+          const int i = m.cell_of(s.ox, t.width);
+          const int j = m.cell_of(s.oy, t.height);
+          const bool on_map = i >= 0 && j >= 0 && i < t.width && j < t.height;
+          if (m.blocks_start(s.ox, s.oy)) {
+            std::fill(out, out + beams, 0.0F);
+          } else if (!on_map) {
+            for (std::size_t b = 0; b < beams; ++b) {
+              out[b] = detail::walk_grid(m, m.prepare(rays.ray(s, b)), batch.max_range);
+            }
+          } else {
+            const Candidates near = t.candidates(i, j, s.ox, s.oy);
+            const double heading = wrap(std::atan2(s.s, s.c) * per_rad);
+            for (std::size_t b = 0; b < beams; ++b) {
+              out[b] = t.lookup(near, heading + beam_index[b], batch.max_range);
+            }
+          }
+        }
+      });
+}
+
+float RangeTable::cast_one(Point2 origin, double angle, float max_range) const {
+  detail::check_max_range(max_range);
+  const detail::GridFrame frame(impl_->origin);
+  const detail::GridRay ray = frame.ray(origin, angle);
+  if (!std::isfinite(ray.ox) || !std::isfinite(ray.oy) || !std::isfinite(ray.dx)) {
+    return std::numeric_limits<float>::quiet_NaN();
+  }
+  return impl_->cast_ray(ray, angle - impl_->origin.theta, max_range);
+}
+
+}  // namespace mote
