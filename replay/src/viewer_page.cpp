@@ -1,11 +1,13 @@
-// viewer.html: the page template (viewer_template.cpp) with the run embedded as one JSON
-// object; the bulky columns (map cells, particles, endpoints) as base64 of little-endian arrays.
+// viewer.html: the page template (viewer_page_head.cpp, viewer_script.cpp) with the run embedded
+// as one JSON object; the bulky columns (map cells, particles, endpoints) as base64 of arrays.
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <ostream>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "mote/core/error.hpp"
 #include "mote/replay/metrics.hpp"
@@ -38,8 +40,8 @@ void write_base64(std::ostream& out, std::span<const std::uint8_t> bytes) {
   out << '"' << line << '"';
 }
 
-// Unsigned integers as little-endian bytes (the page reads them with a DataView-free typed
-// array only on little-endian machines, so the byte order is fixed here, not left to the host).
+// Unsigned integers as little-endian bytes, whatever the host's order (the page decodes them
+// byte by byte).
 template <typename T>
 void write_le(std::ostream& out, std::span<const T> values) {
   std::vector<std::uint8_t> bytes;

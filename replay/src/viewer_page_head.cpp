@@ -33,6 +33,7 @@ canvas { display: block; background: #fff; }
 <span><i style="background:#00aa00"></i>reference</span>
 <span><i style="background:#285aff"></i>particles (shade: weight)</span>
 <span><i style="background:#ff8c00"></i>scan endpoints from the estimate</span>
+<span><i style="border:2px solid #7b2cbf;border-radius:50%;width:6px;height:6px"></i>other clusters (area: weight)</span>
 </div>
 <canvas id="map"></canvas>
 <div id="timelines"></div>

@@ -1,6 +1,7 @@
 // The viewer's per-update recording: decimated particles with weights and the scan endpoints
 // from the estimate, in 16-bit fixed point. Costs O(kViewerParticles + beams) per update.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -11,8 +12,11 @@ namespace {
 
 constexpr double kFixedMax = 65535.0;
 
+// Rounded and clamped to [0, 65535]; NaN gives 0.
 std::uint16_t to_fixed(double value) {
-  return static_cast<std::uint16_t>(std::lround(std::clamp(value, 0.0, kFixedMax)));
+  if (!(value > 0.0)) return 0;
+  if (value >= kFixedMax) return UINT16_MAX;
+  return static_cast<std::uint16_t>(value + 0.5);
 }
 
 std::uint32_t to_u32(std::size_t n) { return static_cast<std::uint32_t>(n); }
@@ -41,14 +45,9 @@ bool FixedPointGrid::inside(Point2 world) const noexcept {
   return c.x >= 0.0 && c.y >= 0.0 && c.x <= width_ && c.y <= height_;
 }
 
-std::uint16_t FixedPointGrid::u(Point2 world) const noexcept {
-  const double c = cells(world).x * per_cell_;
-  return to_fixed(std::isfinite(c) ? c : 0.0);
-}
-
-std::uint16_t FixedPointGrid::v(Point2 world) const noexcept {
-  const double c = cells(world).y * per_cell_;
-  return to_fixed(std::isfinite(c) ? c : 0.0);
+std::array<std::uint16_t, 2> FixedPointGrid::fixed(Point2 world) const noexcept {
+  const Point2 c = cells(world);
+  return {to_fixed(c.x * per_cell_), to_fixed(c.y * per_cell_)};
 }
 
 void ViewerRecorder::record(const Localizer& filter, const ScanFrame& frame) {
@@ -66,31 +65,42 @@ void ViewerRecorder::record_clusters(const LocalizationEstimate& estimate) {
   const std::size_t kept = std::min(estimate.clusters.size(), kViewerClusters);
   for (std::size_t k = 0; k < std::max<std::size_t>(kept, 1); ++k) {
     const PoseEstimate& c = kept == 0 ? estimate.overall : estimate.clusters[k];
-    const Point2 p{c.mean.x, c.mean.y};
+    const auto [u, v] = grid_.fixed({c.mean.x, c.mean.y});
     recording_.heavy_clusters.insert(recording_.heavy_clusters.end(),
-                                     {grid_.u(p), grid_.v(p), to_fixed(c.weight * kFixedMax)});
+                                     {u, v, to_fixed(c.weight * kFixedMax)});
   }
   recording_.heavy_cluster_end.push_back(to_u32(recording_.heavy_clusters.size()));
 }
 
 // An even stride over the set: resampling keeps the particles of one ancestor together, so a
-// stride sees every part of the cloud in proportion to its particle count.
+// stride sees every part of the cloud in proportion to its particle count. One pass writes the
+// positions and keeps the log-weights; the second turns them into weights relative to the
+// heaviest recorded particle, what the page's shading needs.
 void ViewerRecorder::record_particles(const ConstParticleView& particles) {
   const std::size_t n = particles.size();
   const std::size_t kept = std::min(n, kViewerParticles);
+  const double stride = kept > 0 ? static_cast<double>(n) / static_cast<double>(kept) : 0.0;
+  const std::size_t begin = recording_.particles.size();
+  if (recording_.particles.capacity() < begin + 3 * kept) {
+    // Room for 1024 more updates at a time: no copy of the whole recording every few updates.
+    recording_.particles.reserve(begin + 3 * kViewerParticles * 1024);
+  }
+  recording_.particles.resize(begin + 3 * kept);
   logw_.resize(kept);
+  std::uint16_t* out = recording_.particles.data() + begin;
   float max_logw = -std::numeric_limits<float>::infinity();
   for (std::size_t k = 0; k < kept; ++k) {
-    logw_[k] = particles.logw[k * n / kept];
+    const std::size_t i =
+        std::min(static_cast<std::size_t>(static_cast<double>(k) * stride), n - 1);
+    const auto [u, v] = grid_.fixed({particles.x[i], particles.y[i]});
+    out[3 * k] = u;
+    out[3 * k + 1] = v;
+    logw_[k] = particles.logw[i];
     if (std::isfinite(logw_[k])) max_logw = std::max(max_logw, logw_[k]);
   }
   for (std::size_t k = 0; k < kept; ++k) {
-    const std::size_t i = k * n / kept;
-    const Point2 p{particles.x[i], particles.y[i]};
-    // Weights relative to the heaviest recorded particle: what the page's shading needs.
-    const double w = std::isfinite(logw_[k]) ? std::exp(double{logw_[k]} - max_logw) : 0.0;
-    recording_.particles.insert(recording_.particles.end(),
-                                {grid_.u(p), grid_.v(p), to_fixed(w * kFixedMax)});
+    const float w = std::isfinite(logw_[k]) ? std::exp(logw_[k] - max_logw) : 0.0F;
+    out[3 * k + 2] = to_fixed(double{w} * kFixedMax);
   }
   recording_.particle_end.push_back(to_u32(recording_.particles.size()));
 }
@@ -99,13 +109,20 @@ void ViewerRecorder::record_particles(const ConstParticleView& particles) {
 // sensor's mounting pose; those that leave the map are left out.
 void ViewerRecorder::record_endpoints(const Pose2& estimate, const LaserScan& scan) {
   const Pose2 sensor = compose(estimate, scan.sensor_pose);
+  // The beam direction turned by angle_increment per beam (a rotation, not a cos and sin each).
+  const double first = sensor.theta + scan.beam_angle(0);
+  double c = std::cos(first), s = std::sin(first);
+  const double dc = std::cos(double{scan.angle_increment});
+  const double ds = std::sin(double{scan.angle_increment});
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const float r = scan.ranges[i];
-    if (!(r >= scan.range_min && r < scan.range_max)) continue;
-    const double a = sensor.theta + scan.beam_angle(i);
-    const Point2 p{sensor.x + r * std::cos(a), sensor.y + r * std::sin(a)};
-    if (!grid_.inside(p)) continue;
-    recording_.endpoints.insert(recording_.endpoints.end(), {grid_.u(p), grid_.v(p)});
+    const Point2 p{sensor.x + r * c, sensor.y + r * s};
+    const double turned = c * dc - s * ds;
+    s = s * dc + c * ds;
+    c = turned;
+    if (!(r >= scan.range_min && r < scan.range_max) || !grid_.inside(p)) continue;
+    const auto [u, v] = grid_.fixed(p);
+    recording_.endpoints.insert(recording_.endpoints.end(), {u, v});
   }
   recording_.endpoint_end.push_back(to_u32(recording_.endpoints.size()));
 }

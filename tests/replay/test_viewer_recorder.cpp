@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -44,14 +45,13 @@ TEST(ViewerFixedPoint, MapCornersSpanTheRangeAlongTheLongerSide) {
   const OccupancyGrid map = room({-2.0, 1.0, 0.0});
   const FixedPointGrid grid(map);
   EXPECT_DOUBLE_EQ(grid.per_cell(), 65535.0 / 100);
-  EXPECT_EQ(grid.u({-2.0, 1.0}), 0);
-  EXPECT_EQ(grid.v({-2.0, 1.0}), 0);
-  EXPECT_EQ(grid.u({8.0, 7.0}), 65535);
-  EXPECT_EQ(grid.v({8.0, 7.0}), std::lround(60 * 655.35));
+  EXPECT_EQ(grid.fixed({-2.0, 1.0}), (std::array<std::uint16_t, 2>{0, 0}));
+  EXPECT_EQ(grid.fixed({8.0, 7.0})[0], 65535);
+  EXPECT_EQ(grid.fixed({8.0, 7.0})[1], std::lround(60 * 655.35));
   EXPECT_TRUE(grid.inside({3.0, 4.0}));
   EXPECT_FALSE(grid.inside({8.5, 4.0}));
-  EXPECT_EQ(grid.u({1e9, 0.0}), 65535);  // clamped, not wrapped
-  EXPECT_EQ(grid.u({std::nan(""), 0.0}), 0);
+  EXPECT_EQ(grid.fixed({1e9, 0.0})[0], 65535);  // clamped, not wrapped
+  EXPECT_EQ(grid.fixed({std::nan(""), 0.0})[0], 0);
 }
 
 TEST(ViewerFixedPoint, FollowsARotatedOrigin) {
