@@ -2,8 +2,10 @@
 """What `mote replay --viewer` costs on the Intel log (issue 20: under 5% of the replay's time).
 
 Runs `mote replay` without and with --viewer, interleaved (the machine is noisy), and prints the
-medians of the whole command's wall time and of report.json's wall_s (the replay loop, which
-holds the recording but not the writing of viewer.html). With --baseline MOTE, a build without
+medians of the whole command's wall time, its CPU time (user + system: less disturbed by other
+processes than wall time, but it counts worker threads' spinning; exact with --threads 1) and
+report.json's wall_s (the replay loop, which holds the recording but not the writing of
+viewer.html). With --baseline MOTE, a build without
 the viewer runs in the same rotation, for "nothing when --viewer is off".
 
   bench/viewer_overhead.py --mote build/replay/mote [--baseline OTHER/mote] [--runs 9]
@@ -24,10 +26,14 @@ def run(mote, data, out, extra):
            "--log", os.path.join(intel, "intel.clf"),
            "--reference", os.path.join(intel, "intel.gt.tum"), "--out", out, "--quiet", *extra]
     start = time.perf_counter()
-    subprocess.run(cmd, check=True)
+    child = subprocess.Popen(cmd)
+    _, status, usage = os.wait4(child.pid, 0)
     seconds = time.perf_counter() - start
+    child.returncode = os.waitstatus_to_exitcode(status)
+    if child.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed ({child.returncode})")
     with open(os.path.join(out, "report.json")) as f:
-        return seconds, json.load(f)["wall_s"]
+        return seconds, usage.ru_utime + usage.ru_stime, json.load(f)["wall_s"]
 
 
 def main():
@@ -42,20 +48,24 @@ def main():
     variants = [("off", args.mote, []), ("--viewer", args.mote, ["--viewer"])]
     if args.baseline:
         variants.insert(0, ("baseline", args.baseline, []))
-    times = {name: ([], []) for name, _, _ in variants}
+    times = {name: ([], [], []) for name, _, _ in variants}
     with tempfile.TemporaryDirectory(prefix="mote_viewer_bench_") as work:
         for _ in range(args.runs):
             for name, mote, flags in variants:
-                command_s, loop_s = run(mote, args.data, os.path.join(work, name.strip("-")),
-                                        flags + args.extra)
-                times[name][0].append(command_s)
-                times[name][1].append(loop_s)
-    ref_cmd, ref_loop = (statistics.median(t) for t in times["off"])
+                measured = run(mote, args.data, os.path.join(work, name.strip("-")),
+                               flags + args.extra)
+                for column, value in zip(times[name], measured):
+                    column.append(value)
+    reference = [statistics.median(column) for column in times["off"]]
     print(f"Intel log, {args.runs} interleaved runs each, flags: {' '.join(args.extra) or '-'}")
-    print(f"{'variant':10} {'command s':>10} {'vs off':>8} {'loop s':>8} {'vs off':>8}")
-    for name, (command_s, loop_s) in times.items():
-        c, lo = statistics.median(command_s), statistics.median(loop_s)
-        print(f"{name:10} {c:10.3f} {c / ref_cmd - 1:+8.1%} {lo:8.3f} {lo / ref_loop - 1:+8.1%}")
+    print(f"{'variant':10}" + "".join(f" {h:>10} {'vs off':>7}"
+                                      for h in ("command s", "cpu s", "loop s")))
+    for name, columns in times.items():
+        line = f"{name:10}"
+        for column, ref in zip(columns, reference):
+            m = statistics.median(column)
+            line += f" {m:10.3f} {m / ref - 1:+7.1%}"
+        print(line)
 
 
 if __name__ == "__main__":

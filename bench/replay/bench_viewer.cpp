@@ -36,7 +36,7 @@ void BM_Viewer_ReplayIntel(benchmark::State& state, bool record) {
     return;
   }
   const mote::OccupancyGrid map = mote::load_map(options.map);
-  double loop_s = 0.0, record_s = 0.0, updates = 0.0;
+  double loop_s = 0.0, record_s = 0.0, updates = 0.0, update_ms = 0.0;
   for (auto _ : state) {
     mote::replay::ViewerRecorder recorder(map);
     if (record) {
@@ -49,9 +49,11 @@ void BM_Viewer_ReplayIntel(benchmark::State& state, bool record) {
     const mote::replay::ReplayResult result = mote::replay::run_replay(options);
     loop_s += result.wall_s;
     updates += static_cast<double>(result.updates.size());
+    for (const mote::replay::UpdateRecord& u : result.updates) update_ms += u.ms.total;
     benchmark::DoNotOptimize(recorder.recording().particles.data());
   }
   state.counters["updates/s"] = benchmark::Counter(updates / loop_s);
+  state.counters["update_us"] = benchmark::Counter(1e3 * update_ms / updates);
   state.counters["record_us"] = benchmark::Counter(1e6 * record_s / updates);
   state.counters["recording_share"] = benchmark::Counter(record_s / (loop_s - record_s));
 }

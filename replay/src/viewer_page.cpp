@@ -1,7 +1,9 @@
 // viewer.html: the page template (viewer_page_head.cpp, viewer_script.cpp) with the run embedded
 // as one JSON object; the bulky columns (map cells, particles, endpoints) as base64 of arrays.
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <ostream>
 #include <span>
@@ -20,35 +22,41 @@ namespace {
 constexpr std::string_view kBase64 =
     "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
-// RFC 4648 base64 with padding, what the page's atob() decodes.
+// RFC 4648 base64 with padding, what the page's atob() decodes; written into a string of the
+// final size (megabytes for a long log).
 void write_base64(std::ostream& out, std::span<const std::uint8_t> bytes) {
-  std::string line;
-  line.reserve(bytes.size() / 3 * 4 + 4);
+  std::string text((bytes.size() + 2) / 3 * 4, '=');
+  char* o = text.data();
   std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
+  for (; i + 2 < bytes.size(); i += 3, o += 4) {
     const unsigned v = (unsigned{bytes[i]} << 16U) | (unsigned{bytes[i + 1]} << 8U) | bytes[i + 2];
-    for (const unsigned shift : {18U, 12U, 6U, 0U}) line += kBase64[(v >> shift) & 63U];
+    o[0] = kBase64[v >> 18U];
+    o[1] = kBase64[(v >> 12U) & 63U];
+    o[2] = kBase64[(v >> 6U) & 63U];
+    o[3] = kBase64[v & 63U];
   }
-  if (i < bytes.size()) {
+  if (i < bytes.size()) {  // one or two bytes left: "xx==" or "xxx="
     const bool two = i + 1 < bytes.size();
     const unsigned v = (unsigned{bytes[i]} << 16U) | (two ? unsigned{bytes[i + 1]} << 8U : 0U);
-    line += kBase64[(v >> 18U) & 63U];
-    line += kBase64[(v >> 12U) & 63U];
-    line += two ? kBase64[(v >> 6U) & 63U] : '=';
-    line += '=';
+    o[0] = kBase64[v >> 18U];
+    o[1] = kBase64[(v >> 12U) & 63U];
+    if (two) o[2] = kBase64[(v >> 6U) & 63U];
   }
-  out << '"' << line << '"';
+  out << '"' << text << '"';
 }
 
 // Unsigned integers as little-endian bytes, whatever the host's order (the page decodes them
 // byte by byte).
 template <typename T>
 void write_le(std::ostream& out, std::span<const T> values) {
-  std::vector<std::uint8_t> bytes;
-  bytes.reserve(values.size() * sizeof(T));
-  for (const T v : values) {
-    for (std::size_t b = 0; b < sizeof(T); ++b)
-      bytes.push_back(static_cast<std::uint8_t>((v >> (8U * b)) & 0xFFU));
+  std::vector<std::uint8_t> bytes(values.size() * sizeof(T));
+  if constexpr (std::endian::native == std::endian::little) {
+    if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
+  } else {
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      for (std::size_t b = 0; b < sizeof(T); ++b)
+        bytes[k * sizeof(T) + b] = static_cast<std::uint8_t>((values[k] >> (8U * b)) & 0xFFU);
+    }
   }
   write_base64(out, bytes);
 }

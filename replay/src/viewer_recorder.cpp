@@ -12,13 +12,6 @@ namespace {
 
 constexpr double kFixedMax = 65535.0;
 
-// Rounded and clamped to [0, 65535]; NaN gives 0.
-std::uint16_t to_fixed(double value) {
-  if (!(value > 0.0)) return 0;
-  if (value >= kFixedMax) return UINT16_MAX;
-  return static_cast<std::uint16_t>(value + 0.5);
-}
-
 std::uint32_t to_u32(std::size_t n) { return static_cast<std::uint32_t>(n); }
 
 }  // namespace
@@ -31,24 +24,6 @@ FixedPointGrid::FixedPointGrid(const OccupancyGrid& map)
       width_(map.width()),
       height_(map.height()),
       per_cell_(kFixedMax / std::max({map.width(), map.height(), 1})) {}
-
-// OccupancyGrid::to_grid_frame, in cells.
-Point2 FixedPointGrid::cells(Point2 world) const noexcept {
-  const double dx = world.x - origin_.x;
-  const double dy = world.y - origin_.y;
-  return {(cos_yaw_ * dx + sin_yaw_ * dy) / resolution_,
-          (-sin_yaw_ * dx + cos_yaw_ * dy) / resolution_};
-}
-
-bool FixedPointGrid::inside(Point2 world) const noexcept {
-  const Point2 c = cells(world);
-  return c.x >= 0.0 && c.y >= 0.0 && c.x <= width_ && c.y <= height_;
-}
-
-std::array<std::uint16_t, 2> FixedPointGrid::fixed(Point2 world) const noexcept {
-  const Point2 c = cells(world);
-  return {to_fixed(c.x * per_cell_), to_fixed(c.y * per_cell_)};
-}
 
 void ViewerRecorder::record(const Localizer& filter, const ScanFrame& frame) {
   record_particles(filter.particles());
@@ -67,7 +42,7 @@ void ViewerRecorder::record_clusters(const LocalizationEstimate& estimate) {
     const PoseEstimate& c = kept == 0 ? estimate.overall : estimate.clusters[k];
     const auto [u, v] = grid_.fixed({c.mean.x, c.mean.y});
     recording_.heavy_clusters.insert(recording_.heavy_clusters.end(),
-                                     {u, v, to_fixed(c.weight * kFixedMax)});
+                                     {u, v, to_fixed_point(c.weight * kFixedMax)});
   }
   recording_.heavy_cluster_end.push_back(to_u32(recording_.heavy_clusters.size()));
 }
@@ -98,9 +73,13 @@ void ViewerRecorder::record_particles(const ConstParticleView& particles) {
     logw_[k] = particles.logw[i];
     if (std::isfinite(logw_[k])) max_logw = std::max(max_logw, logw_[k]);
   }
+  // Below e^-12 a weight rounds to 0 of 65535 anyway; leaving exp() out there also keeps it from
+  // the slow subnormal results of the far tail.
+  constexpr float kNegligible = -12.0F;
   for (std::size_t k = 0; k < kept; ++k) {
-    const float w = std::isfinite(logw_[k]) ? std::exp(logw_[k] - max_logw) : 0.0F;
-    out[3 * k + 2] = to_fixed(double{w} * kFixedMax);
+    const float log_ratio = logw_[k] - max_logw;  // NaN for a non-finite log-weight
+    const float w = log_ratio > kNegligible ? std::exp(log_ratio) : 0.0F;
+    out[3 * k + 2] = to_fixed_point(double{w} * kFixedMax);
   }
   recording_.particle_end.push_back(to_u32(recording_.particles.size()));
 }

@@ -29,21 +29,41 @@ inline constexpr std::size_t kViewerParticles = 2000;
 /// Most clusters whose means are recorded per update (the heaviest).
 inline constexpr std::size_t kViewerClusters = 8;
 
+/// A value rounded to 16 bits: clamped to [0, 65535], NaN gives 0.
+[[nodiscard]] inline std::uint16_t to_fixed_point(double value) noexcept {
+  constexpr double kMax = 65535.0;
+  if (!(value > 0.0)) return 0;
+  if (value >= kMax) return UINT16_MAX;
+  return static_cast<std::uint16_t>(value + 0.5);
+}
+
 /// Map frame positions to 16-bit fixed point: grid-frame cells times `per_cell`, where
 /// per_cell = 65535 / max(width, height) so that the whole map fits in [0, 65535]. Keeps the
-/// map's geometry by value (not the map).
+/// map's geometry by value (not the map). Inline: the recorder calls it for every particle.
 class FixedPointGrid {
  public:
   explicit FixedPointGrid(const OccupancyGrid& map);
   /// Fixed-point units per map cell.
   [[nodiscard]] double per_cell() const noexcept { return per_cell_; }
-  /// The point in grid-frame cells (column u from the left, row v from the bottom).
-  [[nodiscard]] Point2 cells(Point2 world) const noexcept;
+  /// The point in grid-frame cells (column u from the left, row v from the bottom), as
+  /// OccupancyGrid::to_grid_frame divided by the resolution.
+  [[nodiscard]] Point2 cells(Point2 world) const noexcept {
+    const double dx = world.x - origin_.x;
+    const double dy = world.y - origin_.y;
+    return {(cos_yaw_ * dx + sin_yaw_ * dy) / resolution_,
+            (-sin_yaw_ * dx + cos_yaw_ * dy) / resolution_};
+  }
   /// Whether `world` lies inside the map's extent (and is finite).
-  [[nodiscard]] bool inside(Point2 world) const noexcept;
+  [[nodiscard]] bool inside(Point2 world) const noexcept {
+    const Point2 c = cells(world);
+    return c.x >= 0.0 && c.y >= 0.0 && c.x <= width_ && c.y <= height_;
+  }
   /// Fixed-point u and v of a point inside the map; clamped to the extent when outside, 0 for
   /// NaN.
-  [[nodiscard]] std::array<std::uint16_t, 2> fixed(Point2 world) const noexcept;
+  [[nodiscard]] std::array<std::uint16_t, 2> fixed(Point2 world) const noexcept {
+    const Point2 c = cells(world);
+    return {to_fixed_point(c.x * per_cell_), to_fixed_point(c.y * per_cell_)};
+  }
 
  private:
   Pose2 origin_;
