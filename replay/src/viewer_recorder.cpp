@@ -23,7 +23,9 @@ FixedPointGrid::FixedPointGrid(const OccupancyGrid& map)
       resolution_(map.resolution()),
       width_(map.width()),
       height_(map.height()),
-      per_cell_(kFixedMax / std::max({map.width(), map.height(), 1})) {}
+      per_cell_(kFixedMax / std::max({map.width(), map.height(), 1})),
+      cos_scaled_(cos_yaw_ * per_cell_ / resolution_),
+      sin_scaled_(sin_yaw_ * per_cell_ / resolution_) {}
 
 void ViewerRecorder::record(const Localizer& filter, const ScanFrame& frame) {
   record_particles(filter.particles());

@@ -61,8 +61,10 @@ class FixedPointGrid {
   /// Fixed-point u and v of a point inside the map; clamped to the extent when outside, 0 for
   /// NaN.
   [[nodiscard]] std::array<std::uint16_t, 2> fixed(Point2 world) const noexcept {
-    const Point2 c = cells(world);
-    return {to_fixed_point(c.x * per_cell_), to_fixed_point(c.y * per_cell_)};
+    const double dx = world.x - origin_.x;
+    const double dy = world.y - origin_.y;
+    return {to_fixed_point(cos_scaled_ * dx + sin_scaled_ * dy),
+            to_fixed_point(cos_scaled_ * dy - sin_scaled_ * dx)};
   }
 
  private:
@@ -70,6 +72,7 @@ class FixedPointGrid {
   double cos_yaw_, sin_yaw_, resolution_;
   int width_, height_;
   double per_cell_;
+  double cos_scaled_, sin_scaled_;  // cos and sin of the yaw times per_cell / resolution
 };
 
 /// What the viewer shows of each update beyond ReplayResult::updates and ::trajectory (index k
