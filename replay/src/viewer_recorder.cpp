@@ -49,8 +49,9 @@ void ViewerRecorder::record_clusters(const LocalizationEstimate& estimate) {
   recording_.heavy_cluster_end.push_back(to_u32(recording_.heavy_clusters.size()));
 }
 
-// An even stride over the set: resampling keeps the particles of one ancestor together, so a
-// stride sees every part of the cloud in proportion to its particle count. One pass writes the
+// An even stride over the set: systematic resampling (Thrun table 4.4, resample.hpp) writes the
+// copies of one ancestor next to each other in ancestor order, so a stride sees every part of
+// the cloud in proportion to its particle count. One pass writes the
 // positions and keeps the log-weights; the second turns them into weights relative to the
 // heaviest recorded particle, what the page's shading needs.
 void ViewerRecorder::record_particles(const ConstParticleView& particles) {
