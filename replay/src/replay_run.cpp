@@ -86,7 +86,10 @@ void run_frames(ReplayResult& result, Localizer& filter, ScanSource& source,
     ++result.scans;
     filter.update(frame->odometry, frame->scan);
     count_outcome(result, filter.last_update());
-    if (filter.last_update().ran()) record_update(result, filter, frame->stamp);
+    if (filter.last_update().ran()) {
+      record_update(result, filter, frame->stamp);
+      if (options.on_update) options.on_update(filter, *frame);
+    }
     if (options.progress) options.progress(result.scans);
   }
 }

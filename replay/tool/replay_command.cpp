@@ -2,16 +2,20 @@
 #include <array>
 #include <iostream>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "mote/maps/map_loader.hpp"
 #include "mote/replay/report.hpp"
+#include "mote/replay/viewer.hpp"
 #include "progress.hpp"
 
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 24> kFlags{{
+constexpr std::array<FlagSpec, 25> kFlags{{
     {"map", "MAP.yaml", "map_server map (required)"},
     {"log", "LOG",
      "recorded log: CARMEN .clf/.log, ROS 1 .bag, or ROS 2 (rosbag2 folder, .mcap, .db3) "
@@ -48,6 +52,10 @@ constexpr std::array<FlagSpec, 24> kFlags{{
     {"profile", "",
      "per-phase timing: percentiles and histograms in report.json, DIR/profile.folded (folded "
      "stacks, microseconds, for flamegraph.pl or speedscope) and a phase table"},
+    {"viewer", "",
+     "DIR/viewer.html: one self-contained page replaying particles, scan, estimate and "
+     "reference over the map, with timelines of the update statistics (open DIR/viewer.html#t=N "
+     "for update N)"},
 }};
 
 constexpr std::string_view kUsage =
@@ -170,7 +178,17 @@ int replay_command(std::span<char* const> words) {
   }
   const std::filesystem::path out = args.required("out");
   const replay::ReportOptions report{.profile = args.has("profile")};
-  const replay::ReplayResult result = replay_and_report(replay_options(args), out, report);
+  replay::ReplayOptions options = replay_options(args);
+  std::optional<replay::ViewerRecorder> viewer;
+  if (args.has("viewer")) {
+    // The recorder quantizes against the map the run loads; loading it twice costs milliseconds.
+    viewer.emplace(load_map(options.map));
+    options.on_update = [&viewer](const Localizer& filter, const replay::ScanFrame& frame) {
+      viewer->record(filter, frame);
+    };
+  }
+  const replay::ReplayResult result = replay_and_report(std::move(options), out, report);
+  if (viewer) replay::write_viewer_html(out / "viewer.html", result, viewer->recording());
   for (const std::string& w : result.reader.warnings)
     std::cerr << "mote replay: warning: " << w << '\n';
   if (!args.has("quiet")) {

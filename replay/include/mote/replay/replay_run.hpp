@@ -49,6 +49,9 @@ struct ReplayOptions {
   std::size_t recovered_hold = 20;  ///< consecutive matched updates within it that count
   /// Called after every scan with the number of scans processed so far; may be empty.
   std::function<void(std::size_t scans)> progress;
+  /// Called after every update that ran (after its UpdateRecord) with the filter and the frame
+  /// it ran on; may be empty. `mote replay --viewer` records the page's data here (viewer.hpp).
+  std::function<void(const Localizer& filter, const ScanFrame& frame)> on_update;
 };
 
 /// One filter update that ran.

@@ -1,0 +1,42 @@
+// viewer.html's head, style sheet and elements (the script is in viewer_script.cpp).
+#include "viewer_template.hpp"
+
+namespace mote::replay {
+
+const std::string_view kViewerPageHead = R"html(<!doctype html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<title>mote viewer: loading</title>
+<style>
+body { font: 13px system-ui, sans-serif; margin: 8px; background: #f4f4f4; color: #222; }
+header { display: flex; gap: 10px; align-items: center; margin-bottom: 6px; }
+#slider { flex: 1; max-width: 700px; }
+#info { font-variant-numeric: tabular-nums; white-space: pre-wrap; }
+#error { background: #b00; color: #fff; padding: 6px; margin-bottom: 6px; }
+#legend span { margin-right: 14px; }
+#legend i { display: inline-block; width: 10px; height: 10px; margin-right: 4px; }
+canvas { display: block; background: #fff; }
+#timelines canvas { margin-top: 2px; cursor: pointer; }
+</style>
+</head>
+<body>
+<div id="error" hidden></div>
+<header>
+<button id="play" type="button">play</button>
+<input id="slider" type="range" min="0" max="0" value="0" step="1">
+<span id="info"></span>
+</header>
+<div id="legend">
+<span><i style="background:#ff00ff"></i>estimate</span>
+<span><i style="background:#dc1414"></i>estimated trajectory</span>
+<span><i style="background:#00aa00"></i>reference</span>
+<span><i style="background:#285aff"></i>particles (shade: weight)</span>
+<span><i style="background:#ff8c00"></i>scan endpoints from the estimate</span>
+<span><i style="border:2px solid #7b2cbf;border-radius:50%;width:6px;height:6px"></i>other clusters (area: weight)</span>
+</div>
+<canvas id="map"></canvas>
+<div id="timelines"></div>
+)html";
+
+}  // namespace mote::replay

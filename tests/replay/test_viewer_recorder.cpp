@@ -1,0 +1,136 @@
+// The viewer's recording (fixed point, decimation, weights, endpoints) and page assembly; the
+// page in a browser is tests/replay/test_viewer.py.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mote/core/error.hpp"
+#include "mote/replay/viewer.hpp"
+
+namespace mote::replay {
+namespace {
+
+// A 10 m x 6 m room of 0.1 m cells: walls on the border, free inside.
+OccupancyGrid room(Pose2 origin = {}) {
+  const int w = 100, h = 60;
+  std::vector<CellState> cells(static_cast<std::size_t>(w * h), CellState::kFree);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      if (i == 0 || j == 0 || i == w - 1 || j == h - 1)
+        cells[static_cast<std::size_t>(j * w + i)] = CellState::kOccupied;
+    }
+  }
+  return {w, h, 0.1, origin, std::move(cells)};
+}
+
+// 90 beams over 180 degrees, 2 m each, the last one "no return".
+ScanFrame frame_at_start() {
+  ScanFrame f;
+  f.scan.angle_min = static_cast<float>(-std::numbers::pi / 2);
+  f.scan.angle_increment = static_cast<float>(std::numbers::pi / 90);
+  f.scan.range_min = 0.1F;
+  f.scan.range_max = 30.0F;
+  f.scan.ranges.assign(90, 2.0F);
+  f.scan.ranges.back() = 30.0F;
+  return f;
+}
+
+TEST(ViewerFixedPoint, MapCornersSpanTheRangeAlongTheLongerSide) {
+  const OccupancyGrid map = room({-2.0, 1.0, 0.0});
+  const FixedPointGrid grid(map);
+  EXPECT_DOUBLE_EQ(grid.per_cell(), 65535.0 / 100);
+  EXPECT_EQ(grid.fixed({-2.0, 1.0}), (std::array<std::uint16_t, 2>{0, 0}));
+  EXPECT_EQ(grid.fixed({8.0, 7.0})[0], 65535);
+  EXPECT_EQ(grid.fixed({8.0, 7.0})[1], std::lround(60 * 655.35));
+  EXPECT_TRUE(grid.inside({3.0, 4.0}));
+  EXPECT_FALSE(grid.inside({8.5, 4.0}));
+  EXPECT_EQ(grid.fixed({1e9, 0.0})[0], 65535);  // clamped, not wrapped
+  EXPECT_EQ(grid.fixed({std::nan(""), 0.0})[0], 0);
+}
+
+TEST(ViewerFixedPoint, FollowsARotatedOrigin) {
+  // Origin yaw 90 degrees: the grid's u axis is the map's y axis.
+  const OccupancyGrid map = room({0.0, 0.0, std::numbers::pi / 2});
+  const FixedPointGrid grid(map);
+  EXPECT_NEAR(grid.cells({-1.0, 2.0}).x, 20.0, 1e-9);
+  EXPECT_NEAR(grid.cells({-1.0, 2.0}).y, 10.0, 1e-9);
+}
+
+TEST(ViewerRecorder, DecimatesToTheCapAndScalesWeightsToTheHeaviest) {
+  const OccupancyGrid map = room();
+  LocalizerConfig config;
+  config.min_particles = config.max_particles = 5000;
+  config.threads = 1;
+  Localizer filter(map, config);
+  filter.initialize_global();
+  const ScanFrame frame = frame_at_start();
+  ASSERT_TRUE(filter.update(frame.odometry, frame.scan));
+  ViewerRecorder recorder(map);
+  recorder.record(filter, frame);
+  const ViewerRecording& r = recorder.recording();
+  ASSERT_EQ(r.particle_end.size(), 1U);
+  EXPECT_EQ(r.particle_end[0],
+            3 * std::min<std::size_t>(filter.particles().size(), kViewerParticles));
+  std::uint16_t heaviest = 0;
+  for (std::size_t i = 2; i < r.particles.size(); i += 3)
+    heaviest = std::max(heaviest, r.particles[i]);
+  EXPECT_EQ(heaviest, 65535);
+  // 89 valid beams of 2 m, each endpoint inside the map or left out; the no-return beam never.
+  ASSERT_EQ(r.endpoint_end.size(), 1U);
+  EXPECT_LE(r.endpoint_end[0], 2U * 89U);
+  EXPECT_EQ(r.endpoint_end[0], r.endpoints.size());
+  EXPECT_EQ(r.clusters.size(), 1U);
+  EXPECT_GE(r.clusters[0], 1);
+  EXPECT_EQ(r.heavy_cluster_end[0] % 3, 0U);
+  EXPECT_GE(r.heavy_cluster_end[0], 3U);
+}
+
+TEST(ViewerPage, RefusesARecordingOfAnotherRun) {
+  ReplayResult result(room(), LocalizerConfig{});
+  result.updates.resize(2);
+  result.trajectory.resize(2);
+  ViewerRecording recording;  // no updates
+  std::ostringstream out;
+  EXPECT_THROW(write_viewer_page(out, result, recording), Error);
+}
+
+TEST(ViewerPage, EmbedsTheDataInOneScriptBlock) {
+  const OccupancyGrid map = room();
+  LocalizerConfig config;
+  config.min_particles = config.max_particles = 100;
+  config.threads = 1;
+  Localizer filter(map, config);
+  filter.initialize({5.0, 3.0, 0.0}, Eigen::Matrix3d::Identity() * 0.01);
+  const ScanFrame frame = frame_at_start();
+  ASSERT_TRUE(filter.update(frame.odometry, frame.scan));
+  ReplayResult result(map, config);
+  result.trajectory.push_back({frame.stamp, filter.estimate().best().mean});
+  UpdateRecord update;
+  update.stamp = frame.stamp;
+  update.ms = filter.last_update().ms;
+  result.updates.push_back(update);
+  ViewerRecorder recorder(map);
+  recorder.record(filter, frame);
+  std::ostringstream out;
+  write_viewer_page(out, result, recorder.recording());
+  const std::string page = out.str();
+  const std::size_t data = page.find("<script id=\"mote-data\"");
+  ASSERT_NE(data, std::string::npos);
+  const std::size_t data_end = page.find("</script>", data);
+  ASSERT_NE(data_end, std::string::npos);
+  const std::string block = page.substr(data, data_end - data);
+  for (const char* key : {"\"total_ms\":[", "\"particle_uvw\":\"", "\"endpoint_uv\":\"",
+                          "\"error_m\":[null]", "\"reference\":[]", "\"map\":{\"width\":100"})
+    EXPECT_NE(block.find(key), std::string::npos) << key;
+  EXPECT_EQ(page.find("http"), std::string::npos);  // nothing fetched from the network
+  EXPECT_EQ(page.substr(page.size() - 8), "</html>\n");
+}
+
+}  // namespace
+}  // namespace mote::replay
