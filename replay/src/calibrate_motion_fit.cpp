@@ -3,8 +3,6 @@
 // table 5.5 with the variances of table 5.6, lines 5-7), linearized around the odometry.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <numbers>
 #include <string>
 
@@ -18,10 +16,14 @@ namespace {
 constexpr double kAlphaMin = 1e-5;
 constexpr double kAlphaMax = 2.0;
 constexpr double kPoseVarMin = 1e-9;  // m^2, rad^2
-constexpr double kPoseVarMax = 0.05;
+// Pose noise of a trajectory that scan alignment estimated: up to 3 cm and 1.8 degrees; a
+// reference trajectory is taken as exact (the floor would otherwise absorb real noise).
+constexpr double kPoseVarMax = 1e-3;
+constexpr double kExactPoseVar = 1e-8;
 constexpr double kBiasMax = 0.5;
 constexpr std::size_t kMinSamples = 30;
 constexpr int kEvaluations = 20000;
+constexpr double kOutlier = 16.0;  // squared Mahalanobis distance: 4 sigma
 
 // amcl's folding of a relative rotation (motion.cpp): driving backwards is a small rotation.
 double fold(double rot) { return std::min(std::abs(rot), std::abs(wrap_angle(rot - std::numbers::pi))); }
@@ -29,40 +31,55 @@ double fold(double rot) { return std::min(std::abs(rot), std::abs(wrap_angle(rot
 // -log N(r; mean, v) up to the constant.
 double nll1(double r, double mean, double v) { return 0.5 * ((r - mean) * (r - mean) / v + std::log(v)); }
 
-// -log of the bivariate normal of (lateral, theta) with covariance [[a, c], [c, b]].
-double nll2(double x, double y, double a, double b, double c) {
-  const double det = std::max(a * b - c * c, 1e-300);
-  return 0.5 * ((b * x * x - 2 * c * x * y + a * y * y) / det + std::log(det));
-}
 
 struct DiffParams {
   double a1, a2, a3, a4, pose_xy, pose_theta, bias_t, bias_r;
 };
 
+struct SampleFit {
+  double nll = 0;
+  double worst = 0;  ///< largest squared Mahalanobis distance of its parts (chi-square scale)
+};
+
+SampleFit diff_sample(const MotionResidual& r, const DiffParams& p) {
+  const double t = r.trans, r1 = r.rot1, r2 = r.rot2;
+  const double v1 = p.a1 * r1 * r1 + p.a2 * t * t;
+  const double v2 = p.a3 * t * t + p.a4 * (r1 * r1 + r2 * r2);
+  const double v3 = p.a1 * r2 * r2 + p.a2 * t * t;
+  const double along = r.along - p.bias_t * t;
+  const double theta = r.theta - p.bias_r * r.rot;
+  SampleFit f;
+  const double va = v2 + p.pose_xy;
+  f.nll = 0.5 * (along * along / va + std::log(va));
+  f.worst = along * along / va;
+  if (t < 0.01) {  // no direction of travel (rot1 = 0): the heading alone
+    const double vt = v1 + v3 + 2 * p.pose_theta;
+    f.nll += 0.5 * (theta * theta / vt + std::log(vt));
+    f.worst = std::max(f.worst, theta * theta / vt);
+    return f;
+  }
+  // (direction error, heading error) = (n1, n1 + n3): covariance [[v1, v1], [v1, v1 + v3]].
+  // Independent pose errors (var pose_xy / 2 per axis, pose_theta) at both ends add position
+  // noise over the distance to the direction, both headings to the heading, and the first
+  // heading to both (it turns the frame the displacement is seen in).
+  const double dir = r.direction - p.bias_r * r.rot1_signed;
+  const double a = v1 + p.pose_xy / (t * t) + p.pose_theta;
+  const double b = v1 + v3 + 2 * p.pose_theta;
+  const double c = v1 + p.pose_theta;
+  const double det = std::max(a * b - c * c, 1e-300);
+  const double q = (b * dir * dir - 2 * c * dir * theta + a * theta * theta) / det;
+  f.nll += 0.5 * (q + std::log(det));
+  f.worst = std::max(f.worst, q / 2);
+  return f;
+}
+
 // Table 5.6's three independent noises n1 (rot1), n2 (trans), n3 (rot2), seen in the motion's
-// direction of travel: along = n2, direction = n1, theta = n1 + n3, with
-// the variances at the motion (table 5.5); the pose noise adds to each. Odometry that scales
-// the motion by (1 + bias) shifts the means by bias times the motion.
+// direction of travel: along = n2, direction = n1, theta = n1 + n3, with the variances at the
+// motion (table 5.5); odometry that scales the motion by (1 + bias) shifts the means by bias
+// times the motion.
 double diff_nll(const std::vector<MotionResidual>& rs, const DiffParams& p) {
   double sum = 0;
-  for (const MotionResidual& r : rs) {
-    const double t = r.trans, r1 = r.rot1, r2 = r.rot2;
-    const double v1 = p.a1 * r1 * r1 + p.a2 * t * t;
-    const double v2 = p.a3 * t * t + p.a4 * (r1 * r1 + r2 * r2);
-    const double v3 = p.a1 * r2 * r2 + p.a2 * t * t;
-    const double along_mean = p.bias_t * t;
-    const double direction_mean = p.bias_r * r.rot1_signed;
-    const double theta_mean = p.bias_r * r.rot;
-    sum += nll1(r.along, along_mean, v2 + p.pose_xy);
-    if (t < 0.01) {  // no direction of travel (rot1 = 0): the heading alone
-      sum += nll1(r.theta, theta_mean, v1 + v3 + p.pose_theta);
-      continue;
-    }
-    // (direction error, heading error) = (n1, n1 + n3): covariance [[v1, v1], [v1, v1 + v3]],
-    // the pose noise entering the direction as position noise over the distance.
-    sum += nll2(r.direction - direction_mean, r.theta - theta_mean, v1 + p.pose_xy / (t * t),
-                v1 + v3 + p.pose_theta, v1);
-  }
+  for (const MotionResidual& r : rs) sum += diff_sample(r, p).nll;
   return sum;
 }
 
@@ -85,10 +102,10 @@ DiffParams diff_from(const std::vector<double>& v, bool with_bias) {
   return {v[0], v[1], v[2], v[3], v[4], v[5], with_bias ? v[6] : 0.0, with_bias ? v[7] : 0.0};
 }
 
-std::vector<detail::Bounded> diff_bounds(bool with_bias) {
+std::vector<detail::Bounded> diff_bounds(bool with_bias, double pose_max) {
   std::vector<detail::Bounded> b(4, {0.05, kAlphaMin, kAlphaMax});
-  b.push_back({1e-4, kPoseVarMin, kPoseVarMax});
-  b.push_back({1e-4, kPoseVarMin, kPoseVarMax});
+  b.push_back({std::sqrt(kPoseVarMin * pose_max), kPoseVarMin, pose_max});
+  b.push_back({std::sqrt(kPoseVarMin * pose_max), kPoseVarMin, pose_max});
   if (with_bias) {
     b.push_back({0.0, -kBiasMax, kBiasMax, false});
     b.push_back({0.0, -kBiasMax, kBiasMax, false});
@@ -128,7 +145,8 @@ MotionResidual motion_residual(const MotionSample& s) {
   return r;
 }
 
-OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples) {
+OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool estimated_poses) {
+  const double pose_max = estimated_poses ? kPoseVarMax : kExactPoseVar;
   if (samples.size() < kMinSamples) {
     throw Error("odometry fit: " + std::to_string(samples.size()) +
                 " increments between updates, at least " + std::to_string(kMinSamples) + " needed");
@@ -143,14 +161,24 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples) {
   fit.quality.samples = rs.size();
   fit.quality.log_likelihood_before = -diff_nll(rs, start);
 
-  const std::vector<double> biased = detail::minimize(
+  std::vector<double> biased = detail::minimize(
       [&](const std::vector<double>& v) { return diff_nll(rs, diff_from(v, true)); },
-      diff_bounds(true), kEvaluations, evals);
-  const DiffParams p = diff_from(biased, true);
-  if (std::getenv("CAL_DEBUG")) {
-    std::fprintf(stderr, "nll fit %.3f truth %.3f evals %d\n", diff_nll(rs, p),
-                 diff_nll(rs, {0.05, 0.01, 0.02, 0.005, p.pose_xy, p.pose_theta, 0, 0}), evals);
+      diff_bounds(true, pose_max), kEvaluations, evals);
+  // Increments beyond 4 sigma of the first fit are poses the trajectory got wrong (a heading
+  // the refinement could not fix), not odometry noise: Gaussian noise puts 1 in 10^4 there, and
+  // a few of them move the maximum far. They are left out and the fit repeated.
+  std::vector<MotionResidual> kept;
+  for (const MotionResidual& r : rs) {
+    if (diff_sample(r, diff_from(biased, true)).worst < kOutlier) kept.push_back(r);
   }
+  fit.outliers = rs.size() - kept.size();
+  rs = std::move(kept);
+  fit.quality.samples = rs.size();
+  fit.quality.log_likelihood_before = -diff_nll(rs, start);
+  biased = detail::minimize(
+      [&](const std::vector<double>& v) { return diff_nll(rs, diff_from(v, true)); },
+      diff_bounds(true, pose_max), kEvaluations, evals);
+  const DiffParams p = diff_from(biased, true);
   fit.alphas = {p.a1, p.a2, p.a3, p.a4};
   fit.pose_variance_xy = p.pose_xy;
   fit.pose_variance_theta = p.pose_theta;
@@ -160,15 +188,15 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples) {
 
   const std::vector<double> zero = detail::minimize(
       [&](const std::vector<double>& v) { return diff_nll(rs, diff_from(v, false)); },
-      diff_bounds(false), kEvaluations, evals);
+      diff_bounds(false, pose_max), kEvaluations, evals);
   fit.alphas_zero_mean = {zero[0], zero[1], zero[2], zero[3]};
   fit.quality.log_likelihood_after = -diff_nll(rs, diff_from(zero, false));
   fit.quality.iterations += evals;
   note_bounds(fit.quality, "", {zero[0], zero[1], zero[2], zero[3]});
 
   std::vector<detail::Bounded> ob(5, {0.05, kAlphaMin, kAlphaMax});
-  ob.push_back({1e-4, kPoseVarMin, kPoseVarMax});
-  ob.push_back({1e-4, kPoseVarMin, kPoseVarMax});
+  ob.push_back({std::sqrt(kPoseVarMin * pose_max), kPoseVarMin, pose_max});
+  ob.push_back({std::sqrt(kPoseVarMin * pose_max), kPoseVarMin, pose_max});
   const std::vector<double> omni = detail::minimize(
       [&](const std::vector<double>& v) { return omni_nll(rs, v, p.bias_t, p.bias_r); }, ob,
       kEvaluations, evals);

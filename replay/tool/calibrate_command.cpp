@@ -22,7 +22,7 @@ constexpr std::array<FlagSpec, 10> kFlags{{
      "reference poses (TUM): fit against them once; without, localize -> fit rounds"},
     {"config", "CONFIG.yaml", "starting LocalizerConfig; fitted values replace its fields"},
     {"model", "NAME", "laser model the config is for: likelihood_field or beam (default likelihood_field)"},
-    {"rounds", "N", "self-calibration rounds at most (default 5)"},
+    {"rounds", "N", "self-calibration rounds at most (default 3)"},
     {"beams", "N", "beams per scan the sensor fits use (default 90)"},
     {"threads", "N", "worker threads, 0 = every core (default 0)"},
     {"laser-max-range", "M", "m, the no-return reading of CARMEN FLASER logs (default: inferred)"},
@@ -35,7 +35,7 @@ constexpr std::string_view kAbout =
     "z_hit/z_rand/sigma_hit (maximum likelihood) and the odometry alphas (maximum likelihood,\n"
     "section 5.4) and writes DIR/config.yaml (for mote replay --config) and DIR/calibration.png.\n"
     "Without --reference the filter's own trajectory is the reference: localize, fit, localize\n"
-    "again with the fit, until no parameter moves by more than 5%.";
+    "again with the fit, until no parameter moves by more than 10% (at most 3 rounds).";
 
 replay::CalibrationProgress progress_bar() {
   if (isatty(STDERR_FILENO) == 0) return {};
@@ -87,6 +87,13 @@ void print_summary(const replay::CalibrationResult& r, const std::filesystem::pa
   if (!r.with_reference) {
     std::printf("  rounds        %zu (%s; last change %.3g in %s)\n", r.rounds.size(),
                 r.settled ? "settled" : "round limit", f.largest_change, f.largest_change_of.c_str());
+  }
+  for (std::size_t k = 0; k < r.rounds.size() && !r.with_reference; ++k) {
+    const replay::CalibrationRound& q = r.rounds[k];
+    const OdometryAlphas& a = q.odometry.alphas_zero_mean;
+    std::printf("  round %zu       %zu poses: sigma_hit %.4f m (beam %.4f m), alphas %.4g %.4g %.4g %.4g\n",
+                k + 1, q.poses, q.field.params.sigma_hit, q.beam.params.sigma_hit, a.alpha1, a.alpha2,
+                a.alpha3, a.alpha4);
   }
   const replay::FieldMixture& lf = f.field.params;
   const replay::BeamMixture& b = f.beam.params;

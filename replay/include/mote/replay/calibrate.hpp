@@ -98,6 +98,7 @@ struct OdometryFit {
   /// Variance the pose source adds to each increment (the filter's own estimates jitter), m^2
   /// and rad^2; about 0 against reference poses.
   double pose_variance_xy = 0, pose_variance_theta = 0;
+  std::size_t outliers = 0;  ///< increments beyond 4 sigma of a first fit, left out
   FitQuality quality;
 };
 
@@ -117,9 +118,11 @@ struct MotionResidual {
 /// Maximum likelihood of the residuals under the linearized noise of table 5.6 (lines 5-7:
 /// var rot1 = alpha1 rot1^2 + alpha2 trans^2, var trans = alpha3 trans^2 + alpha4 (rot1^2 +
 /// rot2^2), var rot2 = alpha1 rot2^2 + alpha2 trans^2), with scale biases and a pose-noise floor
-/// fitted alongside; and of amcl's omni model on the same residuals. Every alpha is bounded to
+/// (up to 1e-3 m^2 and rad^2 for estimated_poses, about 0 otherwise) fitted alongside; and of
+/// amcl's omni model on the same residuals. Every alpha is bounded to
 /// [1e-5, 2]. Throws Error for fewer than 30 samples.
-[[nodiscard]] OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples);
+[[nodiscard]] OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples,
+                                             bool estimated_poses = false);
 
 // --- the whole calibration ----------------------------------------------------------------
 
@@ -136,8 +139,8 @@ struct CalibrationOptions {
   int beams_per_scan = 90;  ///< beams per scan the sensor fits use, evenly spaced
   /// Self-calibration rounds at most. Each round localizes with the previous round's fit; the
   /// rounds stop once no parameter moves by more than `settle` (relative, weights absolute).
-  int max_rounds = 5;
-  double settle = 0.05;
+  int max_rounds = 3;
+  double settle = 0.1;
   std::size_t min_scans = 50;  ///< fewer scans with motion is "log too short"
   CalibrationProgress progress;
 };
