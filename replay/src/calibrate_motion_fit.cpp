@@ -33,7 +33,7 @@ double nll1(double r, double mean, double v) { return 0.5 * ((r - mean) * (r - m
 
 
 struct DiffParams {
-  double a1, a2, a3, a4, pose_xy, pose_theta, bias_t, bias_r;
+  double a1, a2, a3, a4, pose_xy, pose_theta, bias_t, bias_r, pose_lateral;
 };
 
 struct SampleFit {
@@ -59,11 +59,12 @@ SampleFit diff_sample(const MotionResidual& r, const DiffParams& p) {
     return f;
   }
   // (direction error, heading error) = (n1, n1 + n3): covariance [[v1, v1], [v1, v1 + v3]].
-  // Independent pose errors (var pose_xy / 2 per axis, pose_theta) at both ends add position
-  // noise over the distance to the direction, both headings to the heading, and the first
-  // heading to both (it turns the frame the displacement is seen in).
+  // Independent pose errors at both ends (var pose_xy / 2 along the motion, pose_lateral / 2
+  // across it: scan alignment in a corridor is surer across it than along; pose_theta in
+  // heading) add position noise over the distance to the direction, both headings to the
+  // heading, and the first heading to both (it turns the frame the displacement is seen in).
   const double dir = r.direction - p.bias_r * r.rot1_signed;
-  const double a = v1 + p.pose_xy / (t * t) + p.pose_theta;
+  const double a = v1 + p.pose_lateral / (t * t) + p.pose_theta;
   const double b = v1 + v3 + 2 * p.pose_theta;
   const double c = v1 + p.pose_theta;
   const double det = std::max(a * b - c * c, 1e-300);
@@ -99,11 +100,12 @@ double omni_nll(const std::vector<MotionResidual>& rs, const std::vector<double>
 }
 
 DiffParams diff_from(const std::vector<double>& v, bool with_bias) {
-  return {v[0], v[1], v[2], v[3], v[4], v[5], with_bias ? v[6] : 0.0, with_bias ? v[7] : 0.0};
+  return {v[0], v[1], v[2], v[3], v[4], v[5], with_bias ? v[7] : 0.0, with_bias ? v[8] : 0.0, v[6]};
 }
 
 std::vector<detail::Bounded> diff_bounds(bool with_bias, double pose_max) {
   std::vector<detail::Bounded> b(4, {0.05, kAlphaMin, kAlphaMax});
+  b.push_back({std::sqrt(kPoseVarMin * pose_max), kPoseVarMin, pose_max});
   b.push_back({std::sqrt(kPoseVarMin * pose_max), kPoseVarMin, pose_max});
   b.push_back({std::sqrt(kPoseVarMin * pose_max), kPoseVarMin, pose_max});
   if (with_bias) {
@@ -157,7 +159,7 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
 
   OdometryFit fit;
   int evals = 0;
-  const DiffParams start{0.2, 0.2, 0.2, 0.2, 1e-4, 1e-4, 0, 0};  // mote's defaults
+  const DiffParams start{0.2, 0.2, 0.2, 0.2, 1e-4, 1e-4, 0, 0, 1e-4};  // mote's defaults
   fit.quality.samples = rs.size();
   fit.quality.log_likelihood_before = -diff_nll(rs, start);
 
