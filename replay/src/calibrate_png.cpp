@@ -2,8 +2,10 @@
 //  1. the measured range error z - z* (-2 m .. +1 m, log-scale counts) as grey bars with the
 //     fitted beam mixture's density over it (red), as Thrun et al. show it in figure 6.4;
 //  2. heading residual of each odometry increment (-0.3 .. 0.3 rad) against the increment's
-//     rotation (0 .. 1 rad), with the fitted 1- and 2-sigma bounds (blue);
-//  3. along-track residual (-0.3 .. 0.3 m) against the increment's translation (0 .. 1 m).
+//     rotation (0 .. its 99th percentile), with the fitted 1- and 2-sigma bounds (blue) at the
+//     median translation;
+//  3. along-track residual (-0.3 .. 0.3 m) against the increment's translation (0 .. its 99th
+//     percentile), bounds at the median rotation.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -33,13 +35,16 @@ int pixel(double v, double lo, double hi) {
   return std::clamp(static_cast<int>((v - lo) / (hi - lo) * kPanel), 0, kPanel - 1);
 }
 
-void frame(Canvas& c, int x0) {
+// The panel's border, and a grey line at zero: vertical at column zero_x, or horizontal at
+// row zero_y (-1 for none).
+void frame(Canvas& c, int x0, int zero_x, int zero_y) {
   for (int k = 0; k < kPanel; ++k) {
     c.dot(x0 + k, 0, {0, 0, 0});
     c.dot(x0 + k, kPanel - 1, {0, 0, 0});
     c.dot(x0, k, {0, 0, 0});
     c.dot(x0 + kPanel - 1, k, {0, 0, 0});
-    c.dot(x0 + kPanel / 2, k, {210, 210, 210});  // zero of the x axis (panel 1) / mid-range
+    if (zero_x >= 0) c.dot(x0 + zero_x, k, {200, 200, 200});
+    if (zero_y >= 0) c.dot(x0 + k, zero_y, {200, 200, 200});
   }
 }
 
@@ -98,30 +103,32 @@ void range_panel(Canvas& c, const CalibrationResult& r) {
     }
     last = y;
   }
-  frame(c, 0);
+  frame(c, 0, pixel(0.0, lo, hi), -1);
 }
 
 // Scatter of residual (y) against a size (x), with the fitted sigma(x) drawn at +-1 and +-2.
 template <class Residual, class Size, class Sigma>
 void scatter_panel(Canvas& c, int x0, const CalibrationResult& r, Residual residual, Size size,
-                   Sigma sigma) {
+                   Sigma sigma, double xmax) {
   constexpr double ylim = 0.3;
   for (const MotionResidual& m : r.samples.motion) {
-    c.dot(x0 + pixel(size(m), 0.0, 1.0), kPanel - 1 - pixel(residual(m), -ylim, ylim), {0, 0, 0});
+    c.dot(x0 + pixel(size(m), 0.0, xmax), kPanel - 1 - pixel(residual(m), -ylim, ylim), {0, 0, 0});
   }
   for (int px = 0; px < kPanel; ++px) {
-    const double s = sigma((px + 0.5) / kPanel);
+    const double s = sigma((px + 0.5) / kPanel * xmax);
     for (const double k : {-2.0, -1.0, 1.0, 2.0}) {
       c.dot(x0 + px, kPanel - 1 - pixel(k * s, -ylim, ylim), {0, 60, 220});
     }
   }
-  frame(c, x0);
+  frame(c, x0, -1, kPanel - 1 - pixel(0.0, -ylim, ylim));
 }
 
-double median(std::vector<double> v) {
+// The q-quantile (0 <= q < 1) of v; 0 for none.
+double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size()));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
 }
 
 }  // namespace
@@ -138,16 +145,19 @@ void write_calibration_png(const CalibrationResult& r, const std::filesystem::pa
     trans.push_back(m.trans);
     rot.push_back(std::abs(m.rot));
   }
-  const double t_med = median(trans), r_med = median(rot);
+  const double t_med = quantile(trans, 0.5), r_med = quantile(rot, 0.5);
+  // x axes to the 99th percentile, so a few long increments do not squeeze the rest.
+  const double t_max = std::max(0.05, quantile(trans, 0.99));
+  const double r_max = std::max(0.05, quantile(rot, 0.99));
   // Heading: var = alpha1 (rot1^2 + rot2^2) + 2 alpha2 trans^2; drawn with rot1 = 0, rot2 = rot.
   scatter_panel(
       c, kPanel + kGap, r, [](const MotionResidual& m) { return m.theta; },
       [](const MotionResidual& m) { return std::abs(m.rot); },
-      [&](double x) { return std::sqrt(a.alpha1 * x * x + 2 * a.alpha2 * t_med * t_med); });
+      [&](double x) { return std::sqrt(a.alpha1 * x * x + 2 * a.alpha2 * t_med * t_med); }, r_max);
   scatter_panel(
       c, 2 * (kPanel + kGap), r, [](const MotionResidual& m) { return m.along; },
       [](const MotionResidual& m) { return m.trans; },
-      [&](double x) { return std::sqrt(a.alpha3 * x * x + a.alpha4 * r_med * r_med); });
+      [&](double x) { return std::sqrt(a.alpha3 * x * x + a.alpha4 * r_med * r_med); }, t_max);
   write_png(png, c.image);
 }
 
