@@ -7,7 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "calibrate_refine.hpp"
 #include "mote/core/error.hpp"
+#include "mote/core/parallel.hpp"
 #include "mote/engine/localizer.hpp"
 #include "mote/maps/distance_field.hpp"
 #include "mote/maps/map_loader.hpp"
@@ -15,8 +17,6 @@
 #include "mote/replay/calibrate.hpp"
 #include "mote/replay/metrics.hpp"
 #include "mote/replay/tum.hpp"
-#include "calibrate_refine.hpp"
-#include "mote/core/parallel.hpp"
 
 namespace mote::replay {
 namespace {
@@ -28,6 +28,7 @@ struct PosedFrame {
   std::size_t frame = 0;
   Pose2 pose;
   bool usable = true;  ///< false: its refinement found no fit (left out, and so are its increments)
+  PoseCovariance covariance;  ///< the refinement's (zero for reference poses)
 };
 
 bool moved_enough(const Pose2& from, const Pose2& to, const LocalizerConfig& c) {
@@ -59,8 +60,9 @@ void check_log(const std::vector<ScanFrame>& frames, const CalibrationOptions& o
     }
   }
   if (!any_motion) {
-    throw Error(name + ": no odometry (every scan's odometry pose is the same): nothing to fit "
-                       "the motion model from");
+    throw Error(name +
+                ": no odometry (every scan's odometry pose is the same): nothing to fit "
+                "the motion model from");
   }
   if (updates < o.min_scans) {
     throw Error(name + ": log too short to calibrate from: " + std::to_string(updates) +
@@ -78,7 +80,7 @@ std::vector<PosedFrame> reference_poses(const std::vector<ScanFrame>& frames,
     if (last && !moved_enough(*last, frames[k].odometry, o.config)) continue;
     const auto m = match_reference(ref, frames[k].stamp, MetricOptions{}.match_tolerance_s);
     if (!m) continue;
-    posed.push_back({k, m->pose});
+    posed.push_back({k, m->pose, true, {}});
     last = frames[k].odometry;
   }
   if (posed.size() < o.min_scans) {
@@ -109,10 +111,11 @@ std::vector<PosedFrame> localize(const OccupancyGrid& map, const std::vector<Sca
     const double spread = std::sqrt(best.covariance(0, 0) + best.covariance(1, 1));
     run = spread < kConvergedStd ? run + 1 : 0;
     converged = converged || run >= kConvergedRun;
-    if (converged) posed.push_back({k, best.mean});
+    if (converged) posed.push_back({k, best.mean, true, {}});
   }
   if (!converged || posed.size() < o.min_scans) {
-    throw Error(o.log.string() + ": the filter never converged (round " + std::to_string(round + 1) +
+    throw Error(o.log.string() + ": the filter never converged (round " +
+                std::to_string(round + 1) +
                 ": its best cluster never stayed within 0.2 m for 10 updates with " +
                 std::to_string(o.min_scans) + " updates left); no config written");
   }
@@ -140,7 +143,9 @@ Samples collect(const OccupancyGrid& map, const RayCaster& caster, const Distanc
     const ScanFrame& f = frames[posed[p].frame];
     if (p > 0 && posed[p - 1].usable) {
       const ScanFrame& prev = frames[posed[p - 1].frame];
-      s.motion.push_back({between(prev.odometry, f.odometry), between(posed[p - 1].pose, posed[p].pose)});
+      s.motion.push_back({between(prev.odometry, f.odometry),
+                          between(posed[p - 1].pose, posed[p].pose), posed[p - 1].covariance,
+                          posed[p].covariance, posed[p - 1].pose.theta});
     }
     const Pose2 sensor = compose(posed[p].pose, f.scan.sensor_pose);
     const std::size_t n = f.scan.ranges.size();
@@ -230,12 +235,14 @@ void refine(std::vector<PosedFrame>& posed, const std::vector<ScanFrame>& frames
   par::for_each_chunk(posed.size(), 16, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       const LaserScan& scan = frames[posed[k].frame].scan;
-      const auto step = std::max<std::size_t>(1, scan.ranges.size() / static_cast<std::size_t>(o.beams_per_scan));
+      const auto step =
+          std::max<std::size_t>(1, scan.ranges.size() / static_cast<std::size_t>(o.beams_per_scan));
       refined[k] = detail::refine_pose(caster, scan, posed[k].pose, z_hit, sigma, range_max, step);
     }
   });
   for (std::size_t k = 0; k < posed.size(); ++k) {
     posed[k].pose = refined[k].pose;
+    posed[k].covariance = refined[k].covariance;
     posed[k].usable = refined[k].inliers >= kMinInliers;
   }
 }
@@ -249,8 +256,9 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
   const std::vector<ScanFrame> frames = read_frames(options);
   check_log(frames, options);
   const RayCaster caster(map);
-  const DistanceField field(map, {.unknown_is_obstacle = false,
-                                  .max_distance = static_cast<float>(options.config.laser_likelihood_max_dist)});
+  const DistanceField field(
+      map, {.unknown_is_obstacle = false,
+            .max_distance = static_cast<float>(options.config.laser_likelihood_max_dist)});
   const double range_max = effective_range_max(frames.front(), options.config);
 
   CalibrationResult result;
@@ -264,7 +272,9 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
       posed = reference_poses(frames, options);
     } else {
       posed = localize(map, frames, options, result.config, round);
-      refine(posed, frames, caster, result.rounds.empty() ? BeamMixture{} : result.rounds.back().beam.params, options, range_max);
+      refine(posed, frames, caster,
+             result.rounds.empty() ? BeamMixture{} : result.rounds.back().beam.params, options,
+             range_max);
     }
     Samples s = collect(map, caster, field, frames, posed, options, range_max);
     CalibrationRound r;

@@ -12,13 +12,15 @@ namespace {
 double logistic(double u) { return 1.0 / (1.0 + std::exp(-u)); }
 
 double to_param(const Bounded& b, double u) {
-  if (b.log_scale) return std::exp(std::log(b.lo) + (std::log(b.hi) - std::log(b.lo)) * logistic(u));
+  if (b.log_scale)
+    return std::exp(std::log(b.lo) + (std::log(b.hi) - std::log(b.lo)) * logistic(u));
   return b.lo + (b.hi - b.lo) * logistic(u);
 }
 
 double to_search(const Bounded& b) {
-  const double f = b.log_scale ? (std::log(b.start) - std::log(b.lo)) / (std::log(b.hi) - std::log(b.lo))
-                               : (b.start - b.lo) / (b.hi - b.lo);
+  const double f = b.log_scale
+                       ? (std::log(b.start) - std::log(b.lo)) / (std::log(b.hi) - std::log(b.lo))
+                       : (b.start - b.lo) / (b.hi - b.lo);
   const double c = std::clamp(f, 1e-6, 1.0 - 1e-6);
   return std::log(c / (1.0 - c));
 }
@@ -52,12 +54,15 @@ Point run(const std::function<double(const Point&)>& g, const Point& start, doub
   std::vector<std::size_t> order(n + 1);
   while (used < budget) {
     std::iota(order.begin(), order.end(), 0U);
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s.values[a] < s.values[b]; });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return s.values[a] < s.values[b]; });
     const std::size_t best = order.front(), worst = order.back(), second = order[n - 1];
-    if (std::abs(s.values[worst] - s.values[best]) < 1e-11 * (1.0 + std::abs(s.values[best]))) break;
+    if (std::abs(s.values[worst] - s.values[best]) < 1e-11 * (1.0 + std::abs(s.values[best])))
+      break;
     Point centroid(n, 0.0);
     for (std::size_t k = 0; k < n; ++k) {
-      for (std::size_t i = 0; i < n; ++i) centroid[i] += s.points[order[k]][i] / static_cast<double>(n);
+      for (std::size_t i = 0; i < n; ++i)
+        centroid[i] += s.points[order[k]][i] / static_cast<double>(n);
     }
     const Point reflected = lerp(centroid, s.points[worst], -1.0);
     const double fr = g(reflected);
@@ -94,7 +99,8 @@ Point run(const std::function<double(const Point&)>& g, const Point& start, doub
 }  // namespace
 
 std::vector<double> minimize(const std::function<double(const std::vector<double>&)>& f,
-                             const std::vector<Bounded>& params, int max_evaluations, int& evaluations) {
+                             const std::vector<Bounded>& params, int max_evaluations,
+                             int& evaluations) {
   auto params_of = [&](const Point& u) {
     Point p(u.size());
     for (std::size_t i = 0; i < u.size(); ++i) p[i] = to_param(params[i], u[i]);

@@ -18,8 +18,8 @@ struct Bounded {
 
 /// Minimizes f over the box; returns the parameters. Deterministic: a fixed initial simplex and
 /// a fixed number of restarts from the best point.
-[[nodiscard]] std::vector<double> minimize(const std::function<double(const std::vector<double>&)>& f,
-                                           const std::vector<Bounded>& params, int max_evaluations,
-                                           int& evaluations);
+[[nodiscard]] std::vector<double> minimize(
+    const std::function<double(const std::vector<double>&)>& f, const std::vector<Bounded>& params,
+    int max_evaluations, int& evaluations);
 
 }  // namespace mote::replay::detail

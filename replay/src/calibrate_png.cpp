@@ -81,7 +81,8 @@ void range_panel(Canvas& c, const CalibrationResult& r) {
     if (i % stride != 0) continue;
     model_n += 1;
     for (int b = 0; b < bins; ++b) {
-      model[static_cast<std::size_t>(b)] += mixture_density(s, lo + (b + 0.5) * width, r.samples.range_max, p);
+      model[static_cast<std::size_t>(b)] +=
+          mixture_density(s, lo + (b + 0.5) * width, r.samples.range_max, p);
     }
   }
   const auto n = static_cast<double>(beams.size());
@@ -95,7 +96,8 @@ void range_panel(Canvas& c, const CalibrationResult& r) {
   }
   int last = -1;
   for (int b = 0; b < bins; ++b) {
-    const double expected_count = model[static_cast<std::size_t>(b)] / std::max(model_n, 1.0) * n * width;
+    const double expected_count =
+        model[static_cast<std::size_t>(b)] / std::max(model_n, 1.0) * n * width;
     const int y = y_of(expected_count);
     for (int yy = std::min(y, last < 0 ? y : last); yy <= std::max(y, last < 0 ? y : last); ++yy) {
       c.dot(b * 2, yy, {220, 0, 0});

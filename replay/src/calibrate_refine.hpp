@@ -14,6 +14,7 @@
 #include "mote/core/pose.hpp"
 #include "mote/core/scan.hpp"
 #include "mote/raycast/ray_caster.hpp"
+#include "mote/replay/calibrate.hpp"
 
 namespace mote::replay::detail {
 
@@ -22,11 +23,12 @@ namespace mote::replay::detail {
 /// `step`; readings at or beyond range_max are left out.
 struct Refined {
   Pose2 pose;
-  double inliers = 0;  ///< share of the readings within 3 sigma of their ray-cast range
+  double inliers = 0;         ///< share of the readings within 3 sigma of their ray-cast range
+  PoseCovariance covariance;  ///< Laplace approximation at the optimum (0 when undetermined)
 };
 
 [[nodiscard]] Refined refine_pose(const RayCaster& caster, const LaserScan& scan,
-                                const Pose2& start, double z_hit, double sigma, double range_max,
-                                std::size_t step);
+                                  const Pose2& start, double z_hit, double sigma, double range_max,
+                                  std::size_t step);
 
 }  // namespace mote::replay::detail

@@ -59,7 +59,8 @@ Responsibilities e_step(const BeamSample& s, double range_max, const BeamMixture
 double beam_log_likelihood(const std::vector<BeamSample>& samples, double range_max,
                            const BeamMixture& p) {
   double sum = 0;
-  for (const BeamSample& s : samples) sum += std::log(std::max(e_step(s, range_max, p).total, 1e-300));
+  for (const BeamSample& s : samples)
+    sum += std::log(std::max(e_step(s, range_max, p).total, 1e-300));
   return sum;
 }
 
@@ -119,8 +120,10 @@ BeamMixture m_step(const std::vector<BeamSample>& samples, double range_max, con
 }
 
 void note_bound(FitQuality& q, const std::string& name, double v, double lo, double hi) {
-  if (v <= lo * (1 + 1e-9)) q.at_bound.push_back(name + " (lower bound " + std::to_string(lo) + ")");
-  if (v >= hi * (1 - 1e-9)) q.at_bound.push_back(name + " (upper bound " + std::to_string(hi) + ")");
+  if (v <= lo * (1 + 1e-9))
+    q.at_bound.push_back(name + " (lower bound " + std::to_string(lo) + ")");
+  if (v >= hi * (1 - 1e-9))
+    q.at_bound.push_back(name + " (upper bound " + std::to_string(hi) + ")");
 }
 
 void require_samples(std::size_t n, const char* what) {
@@ -184,8 +187,8 @@ FieldFit fit_likelihood_field(const std::vector<double>& distances, double range
     const auto n = static_cast<double>(distances.size());
     fit.params.z_hit = std::clamp(share / n, kWeightFloor, 1.0 - kWeightFloor);
     fit.params.z_rand = 1.0 - fit.params.z_hit;
-    fit.params.sigma_hit = share > 0 ? std::clamp(std::sqrt(sq / share), kSigmaMin, kSigmaMax)
-                                     : fit.params.sigma_hit;
+    fit.params.sigma_hit =
+        share > 0 ? std::clamp(std::sqrt(sq / share), kSigmaMin, kSigmaMax) : fit.params.sigma_hit;
     const double next = log_likelihood(fit.params);
     fit.quality.iterations = it + 1;
     const bool done = std::abs(next - ll) < 1e-7 * n;

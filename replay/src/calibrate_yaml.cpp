@@ -20,10 +20,9 @@ std::string num(double v) {
 }
 
 std::string quality(const FitQuality& q, const char* what) {
-  std::string s = "# fitted from " + std::to_string(q.samples) + " " + what +
-                  ", log-likelihood " + num(q.log_likelihood_before) + " (start) -> " +
-                  num(q.log_likelihood_after) + " (fitted), " + std::to_string(q.iterations) +
-                  " iterations\n";
+  std::string s = "# fitted from " + std::to_string(q.samples) + " " + what + ", log-likelihood " +
+                  num(q.log_likelihood_before) + " (start) -> " + num(q.log_likelihood_after) +
+                  " (fitted), " + std::to_string(q.iterations) + " iterations\n";
   for (const std::string& b : q.at_bound) s += "# AT BOUND: " + b + "\n";
   return s;
 }
@@ -57,7 +56,8 @@ void sensor_section(std::ostringstream& y, const CalibrationResult& r, const Cal
   if (c.laser_model_type == LaserModel::kLikelihoodField) {
     y << "# The field's maximum-likelihood sigma_hit is " << num(f.field.params.sigma_hit)
       << " m; the config takes the larger of it and the range error's (beam fit, "
-      << num(b.sigma_hit) << " m): the distance to the nearest wall understates the spread a\n"
+      << num(b.sigma_hit)
+      << " m): the distance to the nearest wall understates the spread a\n"
          "# particle slightly off the pose meets (Intel: 0.025 m loses track, 0.07 m tracks).\n";
   }
   y << "sigma_hit: " << num(c.sigma_hit) << "  # m\n";
@@ -65,7 +65,8 @@ void sensor_section(std::ostringstream& y, const CalibrationResult& r, const Cal
     y << "# Beam model mixture by EM (table 6.2), for laser_model_type: beam (unused by the\n"
          "# likelihood field): z_hit "
       << num(b.z_hit) << ", sigma_hit " << num(b.sigma_hit) << " m, z_rand " << num(b.z_rand)
-      << "\n" << quality(f.beam.quality, "beams");
+      << "\n"
+      << quality(f.beam.quality, "beams");
   }
   y << "z_short: " << num(b.z_short) << "  # beam model, table 6.2\n"
     << "z_max: " << num(b.z_max) << "  # beam model, table 6.2\n"
@@ -78,14 +79,15 @@ void motion_section(std::ostringstream& y, const CalibrationResult& r, const Cal
   y << "\n# Odometry noise by maximum likelihood of the increments between updates (sec. 5.4,\n"
        "# table 5.6 lines 5-7: var rot1 = alpha1 rot1^2 + alpha2 trans^2, var trans = alpha3\n"
        "# trans^2 + alpha4 (rot1^2 + rot2^2)), zero-mean as the filter's model is.\n"
-    << quality(o.quality, "increments") << "# Systematic part, which the filter's model lacks (so the alphas above cover it):\n"
+    << quality(o.quality, "increments")
+    << "# Systematic part, which the filter's model lacks (so the alphas above cover it):\n"
     << "# translation scale error " << num(o.translation_bias) << ", rotation scale error "
     << num(o.rotation_bias) << "; without it the noise is alpha1 " << num(o.alphas.alpha1)
     << ", alpha2 " << num(o.alphas.alpha2) << ", alpha3 " << num(o.alphas.alpha3) << ", alpha4 "
     << num(o.alphas.alpha4) << ".\n"
     << "# " << o.outliers << " increments beyond 4 sigma of a first fit left out.\n"
-    << "# Pose noise of the trajectory fitted alongside: " << num(o.pose_variance_xy)
-    << " m^2, " << num(o.pose_variance_theta) << " rad^2.\n"
+    << "# Pose noise of the trajectory fitted alongside: " << num(o.pose_variance_xy) << " m^2, "
+    << num(o.pose_variance_theta) << " rad^2.\n"
     << "odom_model_type: " << odom_name(c.odom_model_type) << "\n";
   if (c.odom_model_type == OdomModel::kAckermann) {
     y << "# Ackermann: alpha1/alpha3 are its steering/distance noise; they are not fitted (the\n"
@@ -100,7 +102,8 @@ void motion_section(std::ostringstream& y, const CalibrationResult& r, const Cal
     << ", alpha4 " << num(o.alphas_omni.alpha4) << ", alpha5 " << num(o.alpha5) << "\n"
     << "alpha5: " << num(c.odom_model_type == OdomModel::kOmni ? c.alpha5 : o.alpha5) << "\n"
     << "# The online estimate (odometry_noise.hpp) starts from the fit and keeps its margin over\n"
-       "# it (Intel: the fitted alphas held fixed lose track, adapted from them the filter tracks).\n"
+       "# it (Intel: the fitted alphas held fixed lose track, adapted from them the filter "
+       "tracks).\n"
     << "adaptive_motion_noise: " << (c.adaptive_motion_noise ? "true" : "false") << "\n";
 }
 

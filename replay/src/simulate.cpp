@@ -97,9 +97,10 @@ Simulation simulate(const OccupancyGrid& map, const SimulationConfig& config) {
       for (int s = 0; s < substeps; ++s) driver.advance(dt);
       // Odometry integrates noisy increments, so its error grows like real wheel odometry's.
       const Pose2 delta = between(before, driver.pose());
-      const Pose2 step = config.odometry_alphas
-                             ? detail::alpha_increment(delta, *config.odometry_alphas, config.seed, k)
-                             : detail::noisy_increment(delta, config.odometry, config.seed, k);
+      const Pose2 step =
+          config.odometry_alphas
+              ? detail::alpha_increment(delta, *config.odometry_alphas, config.seed, k)
+              : detail::noisy_increment(delta, config.odometry, config.seed, k);
       odometry = compose(odometry, step);
     }
     ScanFrame frame;

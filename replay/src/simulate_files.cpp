@@ -29,9 +29,9 @@ void write_noise(const std::filesystem::path& path, const SimulationConfig& c) {
   }
   if (c.range_mixture) {
     const RangeMixture& m = *c.range_mixture;
-    out << "# ranges: the beam mixture of table 6.1\nz_hit: " << m.z_hit << "\nz_short: " << m.z_short
-        << "\nz_max: " << m.z_max << "\nz_rand: " << m.z_rand << "\nsigma_hit: " << m.sigma_hit
-        << "\nlambda_short: " << m.lambda_short << "\n";
+    out << "# ranges: the beam mixture of table 6.1\nz_hit: " << m.z_hit
+        << "\nz_short: " << m.z_short << "\nz_max: " << m.z_max << "\nz_rand: " << m.z_rand
+        << "\nsigma_hit: " << m.sigma_hit << "\nlambda_short: " << m.lambda_short << "\n";
   }
   if (!out) throw Error("cannot write '" + path.string() + "'");
 }

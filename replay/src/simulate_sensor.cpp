@@ -42,7 +42,8 @@ float noisy_range(float hit, const std::array<float, 4>& u, const SimulationConf
 
 // One reading of the beam mixture (table 6.1) from the ray cast range `hit`: u[0] picks the
 // component, u[1] places a short or random reading, u[2], u[3] make the Gaussian.
-float mixture_range(float hit, const std::array<float, 4>& u, const RangeMixture& m, float max_range) {
+float mixture_range(float hit, const std::array<float, 4>& u, const RangeMixture& m,
+                    float max_range) {
   const double pick = u[0];
   const double z_star = std::min(hit, max_range);
   double r = max_range;
@@ -71,8 +72,9 @@ void simulate_ranges(const RayCaster& caster, const Pose2& truth, const Simulati
     const double angle = sensor.theta + scan.beam_angle(b);
     const float hit = caster.cast_one(Point2{sensor.x, sensor.y}, angle, config.max_range);
     const std::array<float, 4> u = rng.uniform4(static_cast<std::uint32_t>(b));
-    scan.ranges[b] = config.range_mixture ? mixture_range(hit, u, *config.range_mixture, config.max_range)
-                                          : noisy_range(hit, u, config);
+    scan.ranges[b] = config.range_mixture
+                         ? mixture_range(hit, u, *config.range_mixture, config.max_range)
+                         : noisy_range(hit, u, config);
   }
 }
 
@@ -98,7 +100,9 @@ Pose2 alpha_increment(const Pose2& delta, const OdometryAlphaNoise& a, std::uint
   const double rot1 = trans < 0.01 ? 0.0 : std::atan2(delta.y, delta.x);  // amcl's rule
   const double rot2 = wrap_angle(delta.theta - rot1);
   // amcl folds backward motion (rot near +-pi) into a small rotation for the variances.
-  auto fold = [](double r) { return std::min(std::abs(r), std::abs(wrap_angle(r - std::numbers::pi))); };
+  auto fold = [](double r) {
+    return std::min(std::abs(r), std::abs(wrap_angle(r - std::numbers::pi)));
+  };
   const double r1 = fold(rot1), r2 = fold(rot2);
   const double sd1 = std::sqrt(a.alpha1 * r1 * r1 + a.alpha2 * trans * trans);
   const double sd2 = std::sqrt(a.alpha3 * trans * trans + a.alpha4 * (r1 * r1 + r2 * r2));

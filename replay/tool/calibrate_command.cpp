@@ -17,11 +17,13 @@ namespace {
 constexpr std::array<FlagSpec, 10> kFlags{{
     {"map", "MAP.yaml", "map_server map (required)"},
     {"log", "LOG", "recorded log (CARMEN, ROS 1 bag, ROS 2), as mote replay reads it (required)"},
-    {"out", "DIR", "output folder for config.yaml and calibration.png, created if missing (required)"},
+    {"out", "DIR",
+     "output folder for config.yaml and calibration.png, created if missing (required)"},
     {"reference", "REF.tum",
      "reference poses (TUM): fit against them once; without, localize -> fit rounds"},
     {"config", "CONFIG.yaml", "starting LocalizerConfig; fitted values replace its fields"},
-    {"model", "NAME", "laser model the config is for: likelihood_field or beam (default likelihood_field)"},
+    {"model", "NAME",
+     "laser model the config is for: likelihood_field or beam (default likelihood_field)"},
     {"rounds", "N", "self-calibration rounds at most (default 3)"},
     {"beams", "N", "beams per scan the sensor fits use (default 90)"},
     {"threads", "N", "worker threads, 0 = every core (default 0)"},
@@ -43,8 +45,9 @@ replay::CalibrationProgress progress_bar() {
     if (done % 20 != 0 && done != total) return;
     constexpr std::size_t kWidth = 40;
     const std::size_t filled = total == 0 ? 0 : done * kWidth / total;
-    std::fprintf(stderr, "\rround %d [%s%s] %zu/%zu scans", round + 1, std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, '.').c_str(), done, total);
+    std::fprintf(stderr, "\rround %d [%s%s] %zu/%zu scans", round + 1,
+                 std::string(filled, '#').c_str(), std::string(kWidth - filled, '.').c_str(), done,
+                 total);
     if (done == total) std::fprintf(stderr, "\n");
     std::fflush(stderr);
   };
@@ -86,23 +89,31 @@ void print_summary(const replay::CalibrationResult& r, const std::filesystem::pa
               r.with_reference ? "reference" : "filter's own trajectory", r.wall_s);
   if (!r.with_reference) {
     std::printf("  rounds        %zu (%s; last change %.3g in %s)\n", r.rounds.size(),
-                r.settled ? "settled" : "round limit", f.largest_change, f.largest_change_of.c_str());
+                r.settled ? "settled" : "round limit", f.largest_change,
+                f.largest_change_of.c_str());
   }
   for (std::size_t k = 0; k < r.rounds.size() && !r.with_reference; ++k) {
     const replay::CalibrationRound& q = r.rounds[k];
     const OdometryAlphas& a = q.odometry.alphas_zero_mean;
-    std::printf("  round %zu       %zu poses: sigma_hit %.4f m (beam %.4f m), alphas %.4g %.4g %.4g %.4g\n",
-                k + 1, q.poses, q.field.params.sigma_hit, q.beam.params.sigma_hit, a.alpha1, a.alpha2,
-                a.alpha3, a.alpha4);
+    std::printf(
+        "  round %zu       %zu poses: sigma_hit %.4f m (beam %.4f m), alphas %.4g %.4g %.4g %.4g\n",
+        k + 1, q.poses, q.field.params.sigma_hit, q.beam.params.sigma_hit, a.alpha1, a.alpha2,
+        a.alpha3, a.alpha4);
   }
   const replay::FieldMixture& lf = f.field.params;
   const replay::BeamMixture& b = f.beam.params;
   const OdometryAlphas& a = f.odometry.alphas_zero_mean;
-  std::printf("  field         z_hit %.3f  z_rand %.3f  sigma_hit %.4f m\n", lf.z_hit, lf.z_rand, lf.sigma_hit);
-  std::printf("  beam          z_hit %.3f  z_short %.3f  z_max %.3f  z_rand %.3f  sigma_hit %.4f m  lambda_short %.3f\n",
-              b.z_hit, b.z_short, b.z_max, b.z_rand, b.sigma_hit, b.lambda_short);
-  std::printf("  odometry      alpha1 %.4g  alpha2 %.4g  alpha3 %.4g  alpha4 %.4g (bias: trans %.3f, rot %.3f)\n",
-              a.alpha1, a.alpha2, a.alpha3, a.alpha4, f.odometry.translation_bias, f.odometry.rotation_bias);
+  std::printf("  field         z_hit %.3f  z_rand %.3f  sigma_hit %.4f m\n", lf.z_hit, lf.z_rand,
+              lf.sigma_hit);
+  std::printf(
+      "  beam          z_hit %.3f  z_short %.3f  z_max %.3f  z_rand %.3f  sigma_hit %.4f m  "
+      "lambda_short %.3f\n",
+      b.z_hit, b.z_short, b.z_max, b.z_rand, b.sigma_hit, b.lambda_short);
+  std::printf(
+      "  odometry      alpha1 %.4g  alpha2 %.4g  alpha3 %.4g  alpha4 %.4g (bias: trans %.3f, rot "
+      "%.3f)\n",
+      a.alpha1, a.alpha2, a.alpha3, a.alpha4, f.odometry.translation_bias,
+      f.odometry.rotation_bias);
   std::printf("  config        %s\n", yaml.string().c_str());
 }
 

@@ -62,7 +62,8 @@ std::vector<double> numbers(const ParsedArgs& args, std::string_view flag, std::
     start = comma + 1;
   }
   if (v.size() != n) {
-    throw args.error(flag, "expects " + std::to_string(n) + " comma-separated numbers, got '" + text + "'");
+    throw args.error(
+        flag, "expects " + std::to_string(n) + " comma-separated numbers, got '" + text + "'");
   }
   return v;
 }

@@ -20,8 +20,12 @@ namespace {
 // --- the fits on draws ---------------------------------------------------------------------
 
 TEST(CalibrateFits, BeamMixtureRecoversTable61Mixture) {
-  const BeamMixture truth{.z_hit = 0.7, .z_short = 0.15, .z_max = 0.05, .z_rand = 0.1,
-                          .sigma_hit = 0.08, .lambda_short = 0.7};
+  const BeamMixture truth{.z_hit = 0.7,
+                          .z_short = 0.15,
+                          .z_max = 0.05,
+                          .z_rand = 0.1,
+                          .sigma_hit = 0.08,
+                          .lambda_short = 0.7};
   constexpr double kMax = 20.0;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0), wall(1.0, 12.0);

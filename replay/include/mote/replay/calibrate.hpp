@@ -79,11 +79,19 @@ struct FieldFit {
 
 // --- odometry (Thrun section 5.4) ---------------------------------------------------------
 
+/// The uncertainty of an estimated pose (m^2, m^2, rad^2; x-y in the map frame).
+struct PoseCovariance {
+  double xx = 0, xy = 0, yy = 0, tt = 0;
+};
+
 /// One odometry increment and the motion it stood for (both robot-frame increments between
 /// two filter updates).
 struct MotionSample {
   Pose2 odometry;  ///< between(odom_before, odom_after)
   Pose2 motion;    ///< between(pose_before, pose_after)
+  /// Known uncertainty of the two poses (zero for a reference), added to the model's variance.
+  PoseCovariance before, after;
+  double heading_before = 0;  ///< rad, map-frame heading of pose_before (to rotate `before`)
 };
 
 /// The odometry model's noise as the fit found it.
@@ -110,10 +118,15 @@ struct MotionResidual {
   double rot1 = 0, trans = 0, rot2 = 0;  ///< motion's, rot1/rot2 folded as amcl folds them
   double rot1_signed = 0;                ///< motion's rot1, rad, not folded
   double rot = 0;                        ///< motion's total rotation
+  bool has_direction = false;            ///< travelled at least min_travel: rot1 is defined
+  /// The poses' known variance along and across the motion (both poses, m^2) and in heading
+  /// (the first pose's and the second's, rad^2).
+  double pose_along = 0, pose_lateral = 0, pose_theta0 = 0, pose_theta1 = 0;
 };
 
-/// The residual of one sample (amcl's conventions: rot1 = 0 below 1 cm, backward motion).
-[[nodiscard]] MotionResidual motion_residual(const MotionSample& s);
+/// The residual of one sample (amcl's conventions: rot1 = 0 below min_travel, 1 cm in amcl,
+/// backward motion folded).
+[[nodiscard]] MotionResidual motion_residual(const MotionSample& s, double min_travel = 0.01);
 
 /// Maximum likelihood of the residuals under the linearized noise of table 5.6 (lines 5-7:
 /// var rot1 = alpha1 rot1^2 + alpha2 trans^2, var trans = alpha3 trans^2 + alpha4 (rot1^2 +
