@@ -167,9 +167,11 @@ Samples collect(const OccupancyGrid& map, const RayCaster& caster, const Distanc
   return s;
 }
 
-// Relative change of a scale parameter, absolute change of a weight.
+// Relative change of a scale parameter, absolute change of a weight. Alphas below 1e-3 count as
+// 1e-3: a term that small is no noise worth the name, and one near its lower bound (1e-5) would
+// otherwise "change" by a factor of five between rounds.
 void compare(double a, double b, bool weight, const char* name, CalibrationRound& r) {
-  const double change = weight ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(b), 1e-9);
+  const double change = weight ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(b), 1e-3);
   if (change > r.largest_change) {
     r.largest_change = change;
     r.largest_change_of = name;

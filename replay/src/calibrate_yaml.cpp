@@ -118,8 +118,9 @@ std::string calibration_yaml(const CalibrationResult& r) {
     << ".\n";
   if (!r.with_reference) {
     y << "# Self-calibration: " << r.rounds.size() << " rounds of localize -> fit; "
-      << (r.settled ? "stopped because" : "stopped at the round limit although") << " the last "
-      << "round moved no parameter by more than " << num(f.largest_change)
+      << (r.settled ? "settled: the last round moved no parameter by more than "
+                    : "stopped at the round limit: the last round still moved a parameter by ")
+      << num(f.largest_change)
       << (f.largest_change_of.empty() ? "" : " (" + f.largest_change_of + ")") << ".\n";
   }
   y << "# Load with mote replay --config or mote::load_config.\n\n";
