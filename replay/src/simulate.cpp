@@ -48,6 +48,23 @@ void validate(const SimulationConfig& c) {
               std::isfinite(o.translation + o.rotation + o.rotation_per_metre),
           "odometry noise must be finite and >= 0");
   require(std::isfinite(o.translation_bias + o.rotation_bias), "odometry bias must be finite");
+  if (c.odometry_alphas) {
+    const OdometryAlphaNoise& a = *c.odometry_alphas;
+    require(a.alpha1 >= 0 && a.alpha2 >= 0 && a.alpha3 >= 0 && a.alpha4 >= 0 &&
+                std::isfinite(a.alpha1 + a.alpha2 + a.alpha3 + a.alpha4),
+            "odometry alphas must be finite and >= 0");
+    require(std::abs(a.translation_bias) < 1 && std::abs(a.rotation_bias) < 1,
+            "odometry biases must be in (-1, 1)");
+  }
+  if (c.range_mixture) {
+    const RangeMixture& m = *c.range_mixture;
+    require(m.z_hit >= 0 && m.z_short >= 0 && m.z_max >= 0 && m.z_rand >= 0 &&
+                std::abs(m.z_hit + m.z_short + m.z_max + m.z_rand - 1.0) < 1e-6,
+            "range mixture weights must be >= 0 and sum to 1");
+    require(m.sigma_hit > 0 && std::isfinite(m.sigma_hit) && m.lambda_short > 0 &&
+                std::isfinite(m.lambda_short),
+            "range mixture sigma_hit and lambda_short must be positive");
+  }
 }
 
 /// Stamp of scan k, made to survive the 9-decimal TUM file exactly. Below 2^53 ns it is rounded
@@ -80,7 +97,11 @@ Simulation simulate(const OccupancyGrid& map, const SimulationConfig& config) {
       for (int s = 0; s < substeps; ++s) driver.advance(dt);
       // Odometry integrates noisy increments, so its error grows like real wheel odometry's.
       const Pose2 delta = between(before, driver.pose());
-      odometry = compose(odometry, detail::noisy_increment(delta, config.odometry, config.seed, k));
+      const Pose2 step =
+          config.odometry_alphas
+              ? detail::alpha_increment(delta, *config.odometry_alphas, config.seed, k)
+              : detail::noisy_increment(delta, config.odometry, config.seed, k);
+      odometry = compose(odometry, step);
     }
     ScanFrame frame;
     frame.stamp = scan_stamp(config, k);

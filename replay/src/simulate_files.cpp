@@ -2,6 +2,7 @@
 /// Writing a simulation to disk, and finding the bundled floor plan.
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <system_error>
 
@@ -12,13 +13,43 @@
 
 namespace mote::replay {
 
-SimulationFiles write_simulation(const Simulation& sim, const std::filesystem::path& directory) {
+namespace {
+
+// sim.noise.yaml: the chosen noise under the config's names, so a calibration can be checked.
+void write_noise(const std::filesystem::path& path, const SimulationConfig& c) {
+  std::ofstream out(path);
+  out.precision(9);
+  out << "# The noise mote simulate drew this log with (sim.clf).\n";
+  if (c.odometry_alphas) {
+    const OdometryAlphaNoise& a = *c.odometry_alphas;
+    out << "# odometry: Thrun et al. table 5.6 with scale biases\nalpha1: " << a.alpha1
+        << "\nalpha2: " << a.alpha2 << "\nalpha3: " << a.alpha3 << "\nalpha4: " << a.alpha4
+        << "\ntranslation_bias: " << a.translation_bias << "\nrotation_bias: " << a.rotation_bias
+        << "\n";
+  }
+  if (c.range_mixture) {
+    const RangeMixture& m = *c.range_mixture;
+    out << "# ranges: the beam mixture of table 6.1\nz_hit: " << m.z_hit
+        << "\nz_short: " << m.z_short << "\nz_max: " << m.z_max << "\nz_rand: " << m.z_rand
+        << "\nsigma_hit: " << m.sigma_hit << "\nlambda_short: " << m.lambda_short << "\n";
+  }
+  if (!out) throw Error("cannot write '" + path.string() + "'");
+}
+
+}  // namespace
+
+SimulationFiles write_simulation(const Simulation& sim, const std::filesystem::path& directory,
+                                 const SimulationConfig& config) {
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
   if (ec) throw Error("cannot create directory '" + directory.string() + "': " + ec.message());
-  SimulationFiles files{directory / "sim.clf", directory / "sim.gt.tum"};
+  SimulationFiles files{directory / "sim.clf", directory / "sim.gt.tum", {}};
   write_carmen_log(files.log, sim.frames);
   write_tum(files.ground_truth, sim.truth);
+  if (config.odometry_alphas || config.range_mixture) {
+    files.noise = directory / "sim.noise.yaml";
+    write_noise(files.noise, config);
+  }
   return files;
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 
 namespace mote::replay::detail {
 
@@ -39,6 +40,27 @@ float noisy_range(float hit, const std::array<float, 4>& u, const SimulationConf
   return static_cast<float>(r);
 }
 
+// One reading of the beam mixture (table 6.1) from the ray cast range `hit`: u[0] picks the
+// component, u[1] places a short or random reading, u[2], u[3] make the Gaussian.
+float mixture_range(float hit, const std::array<float, 4>& u, const RangeMixture& m,
+                    float max_range) {
+  const double pick = u[0];
+  const double z_star = std::min(hit, max_range);
+  double r = max_range;
+  if (pick < m.z_hit) {
+    r = hit >= max_range ? max_range : z_star + m.sigma_hit * box_muller(u[2], u[3]).a;
+  } else if (pick < m.z_hit + m.z_short) {
+    // Inverse CDF of the exponential truncated to [0, z*] (eqs. 6.7-6.9).
+    const double l = m.lambda_short;
+    r = -std::log1p(static_cast<double>(u[1]) * std::expm1(-l * z_star)) / l;
+  } else if (pick < m.z_hit + m.z_short + m.z_max) {
+    r = max_range;
+  } else {
+    r = u[1] * static_cast<double>(max_range);
+  }
+  return static_cast<float>(std::clamp(r, 0.0, static_cast<double>(max_range)));
+}
+
 }  // namespace
 
 void simulate_ranges(const RayCaster& caster, const Pose2& truth, const SimulationConfig& config,
@@ -49,7 +71,10 @@ void simulate_ranges(const RayCaster& caster, const Pose2& truth, const Simulati
   for (std::size_t b = 0; b < scan.ranges.size(); ++b) {
     const double angle = sensor.theta + scan.beam_angle(b);
     const float hit = caster.cast_one(Point2{sensor.x, sensor.y}, angle, config.max_range);
-    scan.ranges[b] = noisy_range(hit, rng.uniform4(static_cast<std::uint32_t>(b)), config);
+    const std::array<float, 4> u = rng.uniform4(static_cast<std::uint32_t>(b));
+    scan.ranges[b] = config.range_mixture
+                         ? mixture_range(hit, u, *config.range_mixture, config.max_range)
+                         : noisy_range(hit, u, config);
   }
 }
 
@@ -65,6 +90,27 @@ Pose2 noisy_increment(const Pose2& delta, const OdometryNoise& noise, std::uint6
   const double rot_std = std::hypot(noise.rotation * delta.theta, noise.rotation_per_metre * trans);
   const double rot_odo = delta.theta * (1.0 + noise.rotation_bias) + rot_std * n[1];
   return {trans_odo * std::cos(direction), trans_odo * std::sin(direction), wrap_angle(rot_odo)};
+}
+
+Pose2 alpha_increment(const Pose2& delta, const OdometryAlphaNoise& a, std::uint64_t seed,
+                      std::uint64_t scan_index) {
+  const RngStream rng{.seed = seed, .step = scan_index, .purpose = kSimOdometry};
+  const std::array<float, 4> n = rng.normal4(0);
+  const double trans = std::hypot(delta.x, delta.y);
+  const double rot1 = trans < 0.01 ? 0.0 : std::atan2(delta.y, delta.x);  // amcl's rule
+  const double rot2 = wrap_angle(delta.theta - rot1);
+  // amcl folds backward motion (rot near +-pi) into a small rotation for the variances.
+  auto fold = [](double r) {
+    return std::min(std::abs(r), std::abs(wrap_angle(r - std::numbers::pi)));
+  };
+  const double r1 = fold(rot1), r2 = fold(rot2);
+  const double sd1 = std::sqrt(a.alpha1 * r1 * r1 + a.alpha2 * trans * trans);
+  const double sd2 = std::sqrt(a.alpha3 * trans * trans + a.alpha4 * (r1 * r1 + r2 * r2));
+  const double sd3 = std::sqrt(a.alpha1 * r2 * r2 + a.alpha2 * trans * trans);
+  const double o1 = rot1 * (1.0 + a.rotation_bias) + sd1 * n[0];
+  const double ot = trans * (1.0 + a.translation_bias) + sd2 * n[1];
+  const double o2 = rot2 * (1.0 + a.rotation_bias) + sd3 * n[2];
+  return {ot * std::cos(o1), ot * std::sin(o1), wrap_angle(o1 + o2)};
 }
 
 }  // namespace mote::replay::detail

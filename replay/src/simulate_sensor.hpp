@@ -33,4 +33,9 @@ void simulate_ranges(const RayCaster& caster, const Pose2& truth, const Simulati
 [[nodiscard]] Pose2 noisy_increment(const Pose2& delta, const OdometryNoise& noise,
                                     std::uint64_t seed, std::uint64_t scan_index);
 
+/// The odometry increment for a true increment under the motion model's own noise
+/// (OdometryAlphaNoise), drawn from the stream of scan `scan_index`.
+[[nodiscard]] Pose2 alpha_increment(const Pose2& delta, const OdometryAlphaNoise& noise,
+                                    std::uint64_t seed, std::uint64_t scan_index);
+
 }  // namespace mote::replay::detail

@@ -20,6 +20,8 @@ int kidnap_command(std::span<char* const> args);
 int crowd_command(std::span<char* const> args);
 /// `mote info`: what a recorded log holds.
 int info_command(std::span<char* const> args);
+/// `mote calibrate`: sensor and motion model parameters fitted from a log.
+int calibrate_command(std::span<char* const> args);
 /// `mote run`: simulate on the bundled floor plan, then replay with global initialization.
 int run_command(std::span<char* const> args);
 

@@ -24,6 +24,8 @@ constexpr std::string_view kHelp =
     "            riding out readings the map cannot explain)\n"
     "  info      print what a log holds: format, duration, messages per topic, the laser's\n"
     "            beams, field of view and range limits, and the tf frames\n"
+    "  calibrate fit the sensor and motion model parameters to a log (with or without\n"
+    "            reference poses) and write config.yaml and calibration.png\n"
     "  run       simulate ~60 s on the bundled floor plan, replay it with global\n"
     "            initialization and print the summary (what `make run` calls)\n\n"
     "`mote COMMAND --help` lists each command's flags with units and defaults;\n"
@@ -36,6 +38,7 @@ int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "crowd") return mote::tool::crowd_command(rest);
   if (command == "run") return mote::tool::run_command(rest);
   if (command == "info") return mote::tool::info_command(rest);
+  if (command == "calibrate") return mote::tool::calibrate_command(rest);
   if (command == "--version" || command == "version") {
     std::cout << "mote " << MOTE_VERSION << "\nkernels: " << mote::isa_description() << '\n';
     return 0;

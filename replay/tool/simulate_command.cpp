@@ -2,6 +2,8 @@
 #include <array>
 #include <iostream>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "args.hpp"
 #include "commands.hpp"
@@ -11,7 +13,7 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 9> kFlags{{
+constexpr std::array<FlagSpec, 14> kFlags{{
     {"map", "MAP.yaml", "map_server map to drive in (required)"},
     {"out", "DIR", "output folder for sim.clf and sim.gt.tum, created if missing (required)"},
     {"seconds", "S", "simulated time, s (default 60)"},
@@ -21,6 +23,16 @@ constexpr std::array<FlagSpec, 9> kFlags{{
     {"range-noise", "M", "std. dev. of the range error, m (default 0.02)"},
     {"odom-noise", "SCALE", "factor on the odometry drift model (default 1; 0 = exact)"},
     {"max-range", "M", "laser maximum range, m (default 20)"},
+    {"scan-rate", "HZ", "scans (and odometry samples) per second (default 10)"},
+    {"alphas", "A1,A2,A3,A4",
+     "odometry noise from the motion model itself (table 5.6, amcl's alpha1..alpha4) instead of "
+     "the drift model; written to DIR/sim.noise.yaml"},
+    {"odom-bias", "T,R", "with --alphas: scale errors of translation and rotation (default 0,0)"},
+    {"mixture", "HIT,SHORT,MAX,RAND",
+     "ranges from the beam mixture (table 6.1) with these weights (sum 1) instead of "
+     "--range-noise; written to DIR/sim.noise.yaml"},
+    {"mixture-shape", "SIGMA,LAMBDA",
+     "with --mixture: sigma_hit (m) and lambda_short (1/m) (default 0.05,0.5)"},
 }};
 
 constexpr std::string_view kUsage = "mote simulate --map MAP.yaml --out DIR [flags]";
@@ -37,6 +49,52 @@ void scale_noise(replay::OdometryNoise& n, double f) {
   n.rotation_bias *= f;
 }
 
+// A comma-separated list of exactly n numbers.
+std::vector<double> numbers(const ParsedArgs& args, std::string_view flag, std::size_t n) {
+  const std::string text = *args.text(flag);
+  std::vector<double> v;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const auto x = parse_real(std::string_view(text).substr(start, comma - start));
+    if (!x) break;
+    v.push_back(*x);
+    start = comma + 1;
+  }
+  if (v.size() != n) {
+    throw args.error(
+        flag, "expects " + std::to_string(n) + " comma-separated numbers, got '" + text + "'");
+  }
+  return v;
+}
+
+void noise_knobs(const ParsedArgs& args, replay::SimulationConfig& c) {
+  if (args.has("alphas")) {
+    const std::vector<double> a = numbers(args, "alphas", 4);
+    replay::OdometryAlphaNoise n{a[0], a[1], a[2], a[3], 0.0, 0.0};
+    if (args.has("odom-bias")) {
+      const std::vector<double> b = numbers(args, "odom-bias", 2);
+      n.translation_bias = b[0];
+      n.rotation_bias = b[1];
+    }
+    c.odometry_alphas = n;
+  } else if (args.has("odom-bias")) {
+    throw args.error("odom-bias", "needs --alphas");
+  }
+  if (args.has("mixture")) {
+    const std::vector<double> w = numbers(args, "mixture", 4);
+    replay::RangeMixture m{w[0], w[1], w[2], w[3], 0.05, 0.5};
+    if (args.has("mixture-shape")) {
+      const std::vector<double> s = numbers(args, "mixture-shape", 2);
+      m.sigma_hit = s[0];
+      m.lambda_short = s[1];
+    }
+    c.range_mixture = m;
+  } else if (args.has("mixture-shape")) {
+    throw args.error("mixture-shape", "needs --mixture");
+  }
+}
+
 replay::SimulationConfig simulation_config(const ParsedArgs& args) {
   replay::SimulationConfig c;
   if (auto s = args.real("seconds", 0.1, 1e6)) c.seconds = *s;
@@ -46,6 +104,8 @@ replay::SimulationConfig simulation_config(const ParsedArgs& args) {
   if (auto v = args.real("range-noise", 0.0, 10.0)) c.range_noise = *v;
   if (auto v = args.real("odom-noise", 0.0, 100.0)) scale_noise(c.odometry, *v);
   if (auto v = args.real("max-range", 0.1, 1000.0)) c.max_range = static_cast<float>(*v);
+  if (auto v = args.real("scan-rate", 0.1, 1000.0)) c.scan_rate = *v;
+  noise_knobs(args, c);
   return c;
 }
 
@@ -61,10 +121,11 @@ int simulate_command(std::span<char* const> words) {
   const std::filesystem::path out = args.required("out");
   const replay::SimulationConfig config = simulation_config(args);
   const replay::Simulation sim = replay::simulate(load_map(map_path), config);
-  const replay::SimulationFiles files = replay::write_simulation(sim, out);
+  const replay::SimulationFiles files = replay::write_simulation(sim, out, config);
   std::cout << "simulated " << sim.frames.size() << " scans (" << config.seconds << " s, "
             << sim.goals_reached << " goals reached)\n  log          " << files.log.string()
             << "\n  ground truth " << files.ground_truth.string() << '\n';
+  if (!files.noise.empty()) std::cout << "  noise        " << files.noise.string() << '\n';
   return 0;
 }
 

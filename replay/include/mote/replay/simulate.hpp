@@ -31,6 +31,27 @@ struct OdometryNoise {
   double rotation_bias = 0.01;      ///< systematic scale error of rotation (fraction)
 };
 
+/// Odometry noise drawn from the odometry motion model itself (Thrun et al., table 5.6, lines
+/// 5-7, amcl's conventions as mote's sampler uses them), so a calibration has known alphas to
+/// recover: the true increment (rot1, trans, rot2) becomes rot1 (1 + rotation_bias) + n1,
+/// trans (1 + translation_bias) + n2, rot2 (1 + rotation_bias) + n3 with var n1 = alpha1 rot1^2
+/// + alpha2 trans^2, var n2 = alpha3 trans^2 + alpha4 (rot1^2 + rot2^2), var n3 = alpha1 rot2^2
+/// + alpha2 trans^2, one draw per scan interval.
+struct OdometryAlphaNoise {
+  double alpha1 = 0.05, alpha2 = 0.01, alpha3 = 0.02, alpha4 = 0.005;
+  double translation_bias = 0.0;  ///< systematic scale error of distance (fraction)
+  double rotation_bias = 0.0;     ///< systematic scale error of rotation (fraction)
+};
+
+/// Range readings drawn from the beam model's mixture (Thrun et al., table 6.1, eqs. 6.4-6.11)
+/// around the ray-cast range z*: N(z*, sigma_hit^2), an exponential truncated to [0, z*], the
+/// maximum range, or uniform on [0, max_range), with these weights (they must sum to 1).
+struct RangeMixture {
+  double z_hit = 0.8, z_short = 0.1, z_max = 0.05, z_rand = 0.05;
+  double sigma_hit = 0.05;    ///< m
+  double lambda_short = 0.5;  ///< 1/m
+};
+
 /// Everything the simulator can vary; the defaults give a modest indoor robot with a SICK-like
 /// 181-beam, 180 degree laser.
 struct SimulationConfig {
@@ -52,6 +73,11 @@ struct SimulationConfig {
   double short_probability = 0.01;     ///< chance a reading is a uniform short one (clutter)
   Pose2 sensor_offset{0.1, 0.0, 0.0};  ///< laser mounting pose in the robot frame (m, rad)
   OdometryNoise odometry;              ///< odometry drift model
+  /// When set, the odometry noise is the motion model's (replaces `odometry`).
+  std::optional<OdometryAlphaNoise> odometry_alphas;
+  /// When set, ranges are drawn from the beam mixture (replaces range_noise,
+  /// dropout_probability and short_probability).
+  std::optional<RangeMixture> range_mixture;
 };
 
 /// A simulated run: one frame per scan with the drifting odometry, and the true base pose at
@@ -70,11 +96,15 @@ struct Simulation {
 struct SimulationFiles {
   std::filesystem::path log;           ///< `sim.clf`, CARMEN log (ODOM + ROBOTLASER1)
   std::filesystem::path ground_truth;  ///< `sim.gt.tum`, true poses stamped like the scans
+  /// `sim.noise.yaml`: the noise the log was drawn with, in the config's names (the oracle of a
+  /// calibration); written when odometry_alphas or range_mixture is set, else empty.
+  std::filesystem::path noise;
 };
 
-/// Writes `sim.clf` and `sim.gt.tum` into `directory` (created if missing).
+/// Writes `sim.clf`, `sim.gt.tum` (and `sim.noise.yaml`) into `directory` (created if missing).
 /// Throws mote::Error if a file cannot be written.
-SimulationFiles write_simulation(const Simulation& sim, const std::filesystem::path& directory);
+SimulationFiles write_simulation(const Simulation& sim, const std::filesystem::path& directory,
+                                 const SimulationConfig& config = {});
 
 /// The bundled office floor plan (20 m x 15 m, 5 cm cells), `floorplan.yaml`: the source tree
 /// copy when it exists, else the installed one (<datadir>/mote). Throws mote::Error if neither

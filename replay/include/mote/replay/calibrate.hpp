@@ -1,0 +1,204 @@
+#pragma once
+/// \file
+/// `mote calibrate`: the sensor and motion model parameters learned from a recorded log
+/// (Thrun, Burgard, Fox, Probabilistic Robotics, 2005). With reference poses the fits run once
+/// against them; without, the filter's own trajectory stands in for them and localization and
+/// fitting alternate until the parameters settle.
+///
+/// The fits are plain functions of their samples, so they can be checked on draws with known
+/// parameters: fit_beam_mixture (table 6.2), fit_likelihood_field (maximum likelihood of
+/// table 6.3's mixture) and fit_odometry_noise (maximum likelihood of the increments under
+/// table 5.5 / 5.6's model).
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mote/core/pose.hpp"
+#include "mote/engine/localizer_config.hpp"
+#include "mote/engine/odometry_noise.hpp"
+#include "mote/replay/scan_source.hpp"
+
+namespace mote::replay {
+
+/// How a fit went: the data it used and its log-likelihood at the start and at the end.
+struct FitQuality {
+  std::size_t samples = 0;           ///< beams or odometry increments used
+  double log_likelihood_before = 0;  ///< total, at the starting parameters
+  double log_likelihood_after = 0;   ///< total, at the fitted parameters
+  int iterations = 0;
+  std::vector<std::string> at_bound;  ///< parameters that ended on a bound, "name (bound)"
+};
+
+// --- beam model (Thrun table 6.1, learned by table 6.2) -----------------------------------
+
+/// The four-part mixture of eqs. 6.4-6.11.
+struct BeamMixture {
+  double z_hit = 0.7, z_short = 0.1, z_max = 0.1, z_rand = 0.1;
+  double sigma_hit = 0.2;     ///< m
+  double lambda_short = 0.5;  ///< 1/m
+};
+
+/// One beam: the measured range and the range the map predicts at the pose.
+struct BeamSample {
+  double measured = 0;  ///< m
+  double expected = 0;  ///< m, ray cast, <= range_max
+};
+
+struct BeamFit {
+  BeamMixture params;
+  FitQuality quality;
+};
+
+/// Expectation-maximization of table 6.2 over readings in [0, range_max] (range_max = no
+/// return). The M-step for lambda_short solves the exact condition of the exponential truncated
+/// at z* (eqs. 6.7-6.9) instead of table 6.2's untruncated sum e z, which is biased when lambda
+/// z* is not large. Throws Error for fewer than 100 samples.
+[[nodiscard]] BeamFit fit_beam_mixture(const std::vector<BeamSample>& samples, double range_max,
+                                       BeamMixture start = {});
+
+// --- likelihood field (Thrun table 6.3) -------------------------------------------------
+
+struct FieldMixture {
+  double z_hit = 0.5, z_rand = 0.5;
+  double sigma_hit = 0.2;  ///< m
+};
+
+struct FieldFit {
+  FieldMixture params;
+  FitQuality quality;
+};
+
+/// Maximum likelihood of p(d) = z_hit N(d; 0, sigma_hit^2) + z_rand / range_max (table 6.3,
+/// lines 7-8) over endpoint distances d (m, clamped as the filter clamps them), z_hit + z_rand
+/// = 1, by EM. Throws Error for fewer than 100 samples.
+[[nodiscard]] FieldFit fit_likelihood_field(const std::vector<double>& distances, double range_max,
+                                            FieldMixture start = {});
+
+// --- odometry (Thrun section 5.4) ---------------------------------------------------------
+
+/// The uncertainty of an estimated pose (m^2, m^2, rad^2; x-y in the map frame).
+struct PoseCovariance {
+  double xx = 0, xy = 0, yy = 0, tt = 0;
+};
+
+/// One odometry increment and the motion it stood for (both robot-frame increments between
+/// two filter updates).
+struct MotionSample {
+  Pose2 odometry;  ///< between(odom_before, odom_after)
+  Pose2 motion;    ///< between(pose_before, pose_after)
+  /// Known uncertainty of the two poses (zero for a reference), added to the model's variance.
+  PoseCovariance before, after;
+  double heading_before = 0;  ///< rad, map-frame heading of pose_before (to rotate `before`)
+};
+
+/// The odometry model's noise as the fit found it.
+struct OdometryFit {
+  OdometryAlphas alphas;  ///< diff model (table 5.6), systematic errors removed
+  double alpha5 = 0;      ///< omni model's strafe noise; with alphas_omni below
+  OdometryAlphas alphas_omni;
+  /// Systematic scale errors (odometry = (1 + bias) motion): the filter's models have none, so
+  /// the config carries alphas_zero_mean, the noise that covers them too.
+  double translation_bias = 0, rotation_bias = 0;
+  OdometryAlphas alphas_zero_mean;  ///< diff model fitted with the biases held at 0
+  /// Variance the pose source adds to each increment (the filter's own estimates jitter), m^2
+  /// and rad^2; about 0 against reference poses.
+  double pose_variance_xy = 0, pose_variance_theta = 0;
+  std::size_t outliers = 0;  ///< increments beyond 4 sigma of a first fit, left out
+  FitQuality quality;
+};
+
+/// Residuals of one increment in the motion's direction of travel: along, lateral (m) and
+/// heading (rad), odometry minus motion, and the motion's noise terms of table 5.6.
+struct MotionResidual {
+  double along = 0, lateral = 0, theta = 0;
+  double direction = 0;  ///< rad, odometry's direction of travel minus the motion's (rot1 error)
+  double rot1 = 0, trans = 0, rot2 = 0;  ///< motion's, rot1/rot2 folded as amcl folds them
+  double rot1_signed = 0;                ///< motion's rot1, rad, not folded
+  double rot = 0;                        ///< motion's total rotation
+  bool has_direction = false;            ///< travelled at least min_travel: rot1 is defined
+  /// The poses' known variance along and across the motion (both poses, m^2) and in heading
+  /// (the first pose's and the second's, rad^2).
+  double pose_along = 0, pose_lateral = 0, pose_theta0 = 0, pose_theta1 = 0;
+};
+
+/// The residual of one sample (amcl's conventions: rot1 = 0 below min_travel, 1 cm in amcl,
+/// backward motion folded).
+[[nodiscard]] MotionResidual motion_residual(const MotionSample& s, double min_travel = 0.01);
+
+/// Maximum likelihood of the residuals under the linearized noise of table 5.6 (lines 5-7:
+/// var rot1 = alpha1 rot1^2 + alpha2 trans^2, var trans = alpha3 trans^2 + alpha4 (rot1^2 +
+/// rot2^2), var rot2 = alpha1 rot2^2 + alpha2 trans^2), with scale biases and a pose-noise floor
+/// (up to 1e-3 m^2 and rad^2 for estimated_poses, about 0 otherwise) fitted alongside; and of
+/// amcl's omni model on the same residuals. Every alpha is bounded to
+/// [1e-5, 2]. Throws Error for fewer than 30 samples.
+[[nodiscard]] OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples,
+                                             bool estimated_poses = false);
+
+// --- the whole calibration ----------------------------------------------------------------
+
+/// What calibrate() reports while it runs: round (0-based), scans of this round done, total.
+using CalibrationProgress =
+    std::function<void(int round, std::size_t scans_done, std::size_t scans_total)>;
+
+struct CalibrationOptions {
+  std::filesystem::path map;        ///< map_server YAML
+  std::filesystem::path log;        ///< any log open_scan_log reads
+  std::filesystem::path reference;  ///< TUM poses; empty = self-calibration
+  LocalizerConfig config;           ///< starting point; fitted values replace its fields
+  ReaderOptions reader;
+  int beams_per_scan = 90;  ///< beams per scan the sensor fits use, evenly spaced
+  /// Self-calibration rounds at most. Each round localizes with the previous round's fit; the
+  /// rounds stop once no parameter moves by more than `settle` (relative, weights absolute).
+  int max_rounds = 3;
+  double settle = 0.1;
+  std::size_t min_scans = 50;  ///< fewer scans with motion is "log too short"
+  CalibrationProgress progress;
+};
+
+/// The parameters after one round and how the filter did with the previous ones.
+struct CalibrationRound {
+  BeamFit beam;
+  FieldFit field;
+  OdometryFit odometry;
+  std::size_t poses = 0;          ///< poses the fits used
+  double largest_change = 0;      ///< against the previous round (relative)
+  std::string largest_change_of;  ///< which parameter
+};
+
+/// Plot data: the per-beam range error z - z* and the odometry residuals.
+struct CalibrationSamples {
+  std::vector<BeamSample> beams;
+  std::vector<MotionResidual> motion;
+  double range_max = 0;
+};
+
+struct CalibrationResult {
+  LocalizerConfig config;  ///< the starting config with every fitted value in
+  bool with_reference = false;
+  std::size_t scans = 0;  ///< scans in the log
+  std::vector<CalibrationRound> rounds;
+  bool settled = false;  ///< self-calibration stopped because the parameters settled
+  CalibrationSamples samples;
+  double wall_s = 0;
+};
+
+/// Reads the log (and reference), fits, and localizes again as needed. Throws Error (one line)
+/// for a log too short to fit from, a log without odometry, or a filter that never converges.
+[[nodiscard]] CalibrationResult calibrate(const CalibrationOptions& options);
+
+/// Writes DIR/config.yaml (flat amcl names, every value commented with its source) and
+/// DIR/calibration.png. Returns the config path. Throws Error when a file cannot be written.
+std::filesystem::path write_calibration(const CalibrationResult& result,
+                                        const std::filesystem::path& directory);
+
+/// The config.yaml text alone.
+[[nodiscard]] std::string calibration_yaml(const CalibrationResult& result);
+
+/// Draws the range-error histogram with the fitted mixture and the odometry residual scatter
+/// with the fitted 1- and 2-sigma bounds into a PNG.
+void write_calibration_png(const CalibrationResult& result, const std::filesystem::path& png);
+
+}  // namespace mote::replay
