@@ -46,8 +46,8 @@ struct LocalizerConfig {
   int min_particles = 500;  ///< lower bound of the KLD-adaptive count
   /// Upper bound of the KLD-adaptive count and of the initial sets. nav2: 2000, which leaves
   /// global localization of a whole building with a particle every few metres. 500000 is 34 MB
-  /// of particles and, on two cores, about 10 ms an update for the few updates a global start
-  /// stays that large.
+  /// of particles (68 bytes each), held only for the few updates a global start stays that
+  /// large: the Wean replay takes 1.4 s instead of 0.9 s.
   int max_particles = 500000;
   /// Global initialization draws this many particles per KLD bin of free space (free area /
   /// kld_bin_xy^2 times the heading bins), within [min_particles, max_particles]: one per bin
