@@ -74,13 +74,47 @@ double units_for(int width, int height) {
 
 /// Lattice points near a sensor and their offsets from it (cells). Always nine entries, so the
 /// choice among them is a fixed, branch-free loop; entry 0 is the sensor's own block and
-/// missing neighbours carry an all-ones mask that keeps them from being chosen.
+/// missing neighbours carry a mask of all ones below the sign bit that keeps them from being
+/// chosen (and keeps every key below 2^31, where signed and unsigned minima agree).
+inline constexpr std::uint32_t kMissing = 0x7FFFFFFFU;
+
 struct Candidates {
   static constexpr std::size_t kCount = 9;
   std::array<std::uint32_t, kCount> slot{};
   std::array<float, kCount> wx{};
   std::array<float, kCount> wy{};
   std::array<std::uint32_t, kCount> missing{};
+};
+
+/// The entries a lookup reads, found before any is read so that a batch issues its loads
+/// back to back (the loads miss the cache; the choice is arithmetic): the entry of the chosen
+/// lattice point and the sensor's own, and the offset along the ray (cells) from the sensor to
+/// each point.
+struct Choice {
+  std::size_t entry = 0;
+  std::size_t own_entry = 0;
+  float along = 0.0F;
+  float own_along = 0.0F;
+};
+
+/// Per-beam working arrays of RangeTable::Impl::choose, one entry per beam.
+struct BeamArrays {
+  std::uint32_t* angle;  ///< nearest table angle
+  float* dx;             ///< its direction
+  float* dy;
+  std::int32_t* key;  ///< the running minimum of the candidates' keys
+};
+
+/// BeamArrays for a batch, reused across the sensors of one task.
+struct BeamScratch {
+  explicit BeamScratch(std::size_t beams) : angle(beams), dx(beams), dy(beams), key(beams) {}
+  [[nodiscard]] BeamArrays arrays() noexcept {
+    return {angle.data(), dx.data(), dy.data(), key.data()};
+  }
+  std::vector<std::uint32_t> angle;
+  std::vector<float> dx;
+  std::vector<float> dy;
+  std::vector<std::int32_t> key;
 };
 
 struct RangeTable::Impl {
@@ -105,9 +139,13 @@ struct RangeTable::Impl {
   /// The lattice points of the sensor's block and its 8 neighbours, for a sensor at grid frame
   /// point (gx, gy) m in on-map cell (i, j).
   [[nodiscard]] Candidates candidates(int i, int j, double gx, double gy) const noexcept;
-  /// Range (m) along table angle index a_real (fractional, in [0, 2 * angles)).
-  [[nodiscard]] [[gnu::always_inline]] inline float lookup(const Candidates& c, double a_real,
-                                                           float max_range) const noexcept;
+  /// Which entries answer for each beam of one sensor, at table angle index
+  /// heading + beam_index[b] (fractional, in [0, 2 * angles)).
+  void choose(const Candidates& c, double heading, std::span<const double> beam_index,
+              BeamArrays scratch, std::span<Choice> choices) const noexcept;
+  /// The range (m) that choice reads.
+  [[nodiscard]] [[gnu::always_inline]] inline float read(const Choice& choice,
+                                                         float max_range) const noexcept;
   [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
 };
 
@@ -157,7 +195,7 @@ void RangeTable::Impl::build() {
 
 Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) const noexcept {
   Candidates c;
-  c.missing.fill(0xFFFFFFFFU);
+  c.missing.fill(kMissing);
   const int bi = i / layout.lattice;
   const int bj = j / layout.lattice;
   const auto ox = static_cast<float>(gx / resolution);
@@ -181,40 +219,63 @@ Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) cons
   return c;
 }
 
-inline float RangeTable::Impl::lookup(const Candidates& c, double a_real,
-                                      float max_range) const noexcept {
-  const int n = options.angles;
+/// The table angle nearest to index a_real (fractional, in [0, 2 * n)).
+inline std::size_t nearest_angle(double a_real, int n) noexcept {
   int a = static_cast<int>(a_real + 0.5);
   if (a >= n) a -= n;
   if (a < 0 || a >= n) a = ((a % n) + n) % n;
-  const auto ua = static_cast<std::size_t>(a);
-  const float dx = cos_a[ua];
-  const float dy = sin_a[ua];
+  return static_cast<std::size_t>(a);
+}
+
+void RangeTable::Impl::choose(const Candidates& c, double heading,
+                              std::span<const double> beam_index, BeamArrays scratch,
+                              std::span<Choice> choices) const noexcept {
+  const std::size_t beams = beam_index.size();
+  const int n = options.angles;
+  std::uint32_t* angle = scratch.angle;
+  float* dx = scratch.dx;
+  float* dy = scratch.dy;
+  std::int32_t* key = scratch.key;
+  for (std::size_t b = 0; b < beams; ++b) {
+    angle[b] = static_cast<std::uint32_t>(nearest_angle(heading + beam_index[b], n));
+    dx[b] = cos_a[angle[b]];
+    dy[b] = sin_a[angle[b]];
+    key[b] = static_cast<std::int32_t>(kMissing);
+  }
   // The lattice point whose ray along this direction passes closest to the sensor stands for it:
   // its range, moved along the ray by its offset, is the sensor's (sideways offsets are what a
   // table cannot correct: they change which wall corner a ray grazes).
   // The argmin as a min over keys: the lateral offset's bits (a non-negative float orders as
-  // its bits) with the index in the 4 lowest, so the loop has no branch and no serial chain;
-  // ties within 2^-19 of each other go to the lower index, the sensor's own point first.
-  std::uint32_t best_key = 0xFFFFFFFFU;
+  // its bits) with the index in the 4 lowest; ties within 2^-19 of each other go to the lower
+  // index, the sensor's own point first. Candidate by candidate, so that the inner loop over
+  // beams has no dependence between iterations and runs on vector lanes (signed minima: every
+  // key is below 2^31).
   for (std::size_t k = 0; k < Candidates::kCount; ++k) {
-    const float lateral = std::abs(dx * c.wy[k] - dy * c.wx[k]);
-    const std::uint32_t key = (std::bit_cast<std::uint32_t>(lateral) & ~0xFU) |
-                              static_cast<std::uint32_t>(k) | c.missing[k];
-    best_key = std::min(best_key, key);
+    const float wx = c.wx[k];
+    const float wy = c.wy[k];
+    const auto tag = static_cast<std::int32_t>(static_cast<std::uint32_t>(k) | c.missing[k]);
+    for (std::size_t b = 0; b < beams; ++b) {
+      const float lateral = std::abs(dx[b] * wy - dy[b] * wx);
+      key[b] = std::min(key[b], (std::bit_cast<std::int32_t>(lateral) & ~0xF) | tag);
+    }
   }
-  std::size_t best = best_key & 0xFU;
-  const auto entry = [&](std::size_t k) {
-    return ranges[static_cast<std::size_t>(c.slot[k]) * static_cast<std::size_t>(n) + ua];
-  };
-  std::uint16_t v = entry(best);
-  float along = dx * c.wx[best] + dy * c.wy[best];
+  for (std::size_t b = 0; b < beams; ++b) {
+    const auto best = static_cast<std::size_t>(key[b] & 0xF);
+    const std::size_t row = static_cast<std::size_t>(n);
+    choices[b] = {static_cast<std::size_t>(c.slot[best]) * row + angle[b],
+                  static_cast<std::size_t>(c.slot[0]) * row + angle[b],
+                  dx[b] * c.wx[best] + dy[b] * c.wy[best], dx[b] * c.wx[0] + dy[b] * c.wy[0]};
+  }
+}
+
+inline float RangeTable::Impl::read(const Choice& choice, float max_range) const noexcept {
+  std::uint16_t v = ranges[choice.entry];
+  float along = choice.along;
   const float inv_units = 1.0F / static_cast<float>(stats.units_per_cell);
   if (v != detail::kNoHit && static_cast<float>(v) * inv_units + along < 0.0F) {
     // The neighbour's wall lies behind the sensor: fall back to the sensor's own point.
-    best = 0;
-    v = entry(best);
-    along = dx * c.wx[best] + dy * c.wy[best];
+    v = ranges[choice.own_entry];
+    along = choice.own_along;
   }
   if (v == detail::kNoHit) return max_range;
   return std::clamp((static_cast<float>(v) * inv_units + along) * resolution, 0.0F, max_range);
@@ -231,7 +292,15 @@ float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
   const double n = options.angles;
   double a_real = angle * n / (2.0 * std::numbers::pi);
   a_real -= n * std::floor(a_real / n);
-  return lookup(candidates(i, j, ray.ox, ray.oy), a_real, max_range);
+  std::uint32_t table_angle = 0;
+  float dx = 0.0F;
+  float dy = 0.0F;
+  std::int32_t key = 0;
+  const double beam = 0.0;
+  Choice choice;
+  choose(candidates(i, j, ray.ox, ray.oy), a_real, {&beam, 1}, {&table_angle, &dx, &dy, &key},
+         {&choice, 1});
+  return read(choice, max_range);
 }
 
 RangeTable::RangeTable(const OccupancyGrid& grid, RangeTableOptions options)
@@ -266,6 +335,8 @@ void RangeTable::cast(const RayBatch& batch, std::span<float> ranges) const {
   for (std::size_t b = 0; b < beams; ++b) beam_index[b] = wrap(batch.beam_angles[b] * per_rad);
   par::for_each_chunk(
       rays.particles(), t.options.particle_grain, [&](std::size_t begin, std::size_t end) {
+        std::vector<Choice> choices(beams);
+        BeamScratch scratch(beams);
         for (std::size_t p = begin; p < end; ++p) {
           const detail::SensorFrame s = rays.sensor(p);
           float* out = ranges.data() + p * beams;
@@ -285,9 +356,8 @@ void RangeTable::cast(const RayBatch& batch, std::span<float> ranges) const {
           } else {
             const Candidates near = t.candidates(i, j, s.ox, s.oy);
             const double heading = wrap(std::atan2(s.s, s.c) * per_rad);
-            for (std::size_t b = 0; b < beams; ++b) {
-              out[b] = t.lookup(near, heading + beam_index[b], batch.max_range);
-            }
+            t.choose(near, heading, beam_index, scratch.arrays(), choices);
+            for (std::size_t b = 0; b < beams; ++b) out[b] = t.read(choices[b], batch.max_range);
           }
         }
       });
