@@ -14,51 +14,14 @@
 #include "mote/engine/executor.hpp"
 #include "mote/maps/likelihood_table.hpp"
 #include "mote/maps/map_loader.hpp"
+#include "mote_bench/office_map.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-/// A size x size office-like PGM: free floor inside an unknown margin, random walls and
-/// rectangular rooms (0 = occupied, 254 = free, 205 = unknown), plus its map_server YAML.
-fs::path write_map(int size) {
-  const fs::path dir = fs::temp_directory_path() / ("mote_bench_maps_" + std::to_string(size));
-  fs::create_directories(dir);
-  const auto n = static_cast<std::size_t>(size);
-  std::vector<unsigned char> px(n * n, 205);
-  const std::size_t margin = n / 20;
-  for (std::size_t r = margin; r < n - margin; ++r) {
-    std::fill(px.begin() + static_cast<long>(r * n + margin),
-              px.begin() + static_cast<long>(r * n + n - margin), 254);
-  }
-  std::mt19937 rng(42);
-  std::uniform_int_distribution<std::size_t> pos(margin, n - margin - 1);
-  auto wall = [&](std::size_t r0, std::size_t c0, std::size_t r1, std::size_t c1) {
-    for (std::size_t r = r0; r <= std::min(r1, n - 1); ++r)
-      for (std::size_t c = c0; c <= std::min(c1, n - 1); ++c) px[r * n + c] = 0;
-  };
-  for (int k = 0; k < size / 8; ++k) {
-    const std::size_t r = pos(rng), c = pos(rng), len = pos(rng) / 8;
-    if (k % 3 == 0) {  // a room outline
-      wall(r, c, r + 1, c + len), wall(r + len, c, r + len + 1, c + len);
-      wall(r, c, r + len, c + 1), wall(r, c + len, r + len + 1, c + len + 1);
-    } else if (k % 3 == 1) {
-      wall(r, c, r + 2, c + len);
-    } else {
-      wall(r, c, r + len, c + 2);
-    }
-  }
-  std::ofstream(dir / "map.pgm", std::ios::binary) << "P5\n"
-                                                   << size << ' ' << size << "\n255\n"
-                                                   << std::string(px.begin(), px.end());
-  std::ofstream(dir / "map.yaml")
-      << "image: map.pgm\nresolution: 0.05\norigin: [-100.0, -100.0, 0.0]\n"
-         "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
-  return dir / "map.yaml";
-}
-
 const fs::path& big_map() {
-  static const fs::path yaml = write_map(4000);
+  static const fs::path yaml = mote::bench::write_office_map(4000);
   return yaml;
 }
 
