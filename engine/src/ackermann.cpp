@@ -18,14 +18,11 @@ float sinc(float h, float sin_h) {
   return std::abs(h) < 1e-3F ? series : sin_h / h;
 }
 
-struct Arc {
-  double length;    // m, signed: negative when reversing
-  double steering;  // rad
-};
+}  // namespace
 
 // The arc through the increment (dx, dy, dtheta) in the previous body frame: the chord has
 // length 2 R sin(dtheta / 2) and s = R dtheta, so s = chord * (dtheta / 2) / sin(dtheta / 2).
-Arc arc_from_increment(const Pose2& d, double wheelbase, double max_steering) {
+AckermannArc ackermann_arc(const Pose2& d, double wheelbase, double max_steering) noexcept {
   const double chord = std::hypot(d.x, d.y);
   const double half = 0.5 * d.theta;
   const double ratio = std::abs(half) < 1e-6 ? 1.0 : half / std::sin(half);
@@ -35,11 +32,9 @@ Arc arc_from_increment(const Pose2& d, double wheelbase, double max_steering) {
   return {s, std::clamp(phi, -max_steering, max_steering)};
 }
 
-}  // namespace
-
 void AckermannModel::sample(const Odometry& u, const ParticleView& p, std::size_t begin,
                             std::size_t end, const RngStream& rng) const {
-  const Arc arc = arc_from_increment(between(u.previous, u.current), wheelbase, max_steering);
+  const AckermannArc arc = ackermann_arc(between(u.previous, u.current), wheelbase, max_steering);
   const auto sd_s = static_cast<float>(std::sqrt(alpha_distance) * std::abs(arc.length));
   const auto sd_phi =
       static_cast<float>(std::sqrt(alpha_steering * arc.steering * arc.steering + steering_floor));

@@ -189,6 +189,12 @@ void measure_change(CalibrationRound& r, const CalibrationRound& prev) {
   compare(a.alpha2, b.alpha2, false, "alpha2", r);
   compare(a.alpha3, b.alpha3, false, "alpha3", r);
   compare(a.alpha4, b.alpha4, false, "alpha4", r);
+  if (r.ackermann && prev.ackermann) {
+    compare(r.ackermann->alpha_steering, prev.ackermann->alpha_steering, false, "Ackermann alpha1",
+            r);
+    compare(r.ackermann->alpha_distance, prev.ackermann->alpha_distance, false, "Ackermann alpha3",
+            r);
+  }
 }
 
 LocalizerConfig apply_fit(LocalizerConfig c, const CalibrationRound& r) {
@@ -216,6 +222,10 @@ LocalizerConfig apply_fit(LocalizerConfig c, const CalibrationRound& r) {
   c.alpha3 = a.alpha3;
   c.alpha4 = a.alpha4;
   if (c.odom_model_type == OdomModel::kOmni) c.alpha5 = r.odometry.alpha5;
+  if (r.ackermann) {  // AckermannModel reads alpha3 as its distance noise, alpha1 as steering
+    c.alpha1 = r.ackermann->alpha_steering;
+    c.alpha3 = r.ackermann->alpha_distance;
+  }
   // The fit starts the online estimate (odometry_noise.hpp), which keeps its margin over the
   // noise: on Intel the fitted alphas held fixed lose track (ATE 2.3 m), adapted from them the
   // filter tracks (0.056 m); the diff model only (the online fit is diff-only).
@@ -284,6 +294,9 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
     r.beam = fit_beam_mixture(s.beams, range_max);
     r.field = fit_likelihood_field(s.distances, range_max);
     r.odometry = fit_odometry_noise(s.motion, !result.with_reference);
+    if (options.config.odom_model_type == OdomModel::kAckermann) {
+      r.ackermann = fit_ackermann_noise(s.motion, options.config.wheelbase, !result.with_reference);
+    }
     if (!result.rounds.empty()) measure_change(r, result.rounds.back());
     result.config = apply_fit(options.config, r);
     result.rounds.push_back(r);

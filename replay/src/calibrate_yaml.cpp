@@ -89,9 +89,19 @@ void motion_section(std::ostringstream& y, const CalibrationResult& r, const Cal
     << "# Pose noise of the trajectory fitted alongside: " << num(o.pose_variance_xy) << " m^2, "
     << num(o.pose_variance_theta) << " rad^2.\n"
     << "odom_model_type: " << odom_name(c.odom_model_type) << "\n";
-  if (c.odom_model_type == OdomModel::kAckermann) {
-    y << "# Ackermann: alpha1/alpha3 are its steering/distance noise; they are not fitted (the\n"
-         "# fit covers diff and omni), the values are the starting config's.\n";
+  if (f.ackermann) {
+    const AckermannFit& k = *f.ackermann;
+    y << "# Ackermann (bicycle, wheelbase " << num(c.wheelbase)
+      << " m), fitted on the arcs of the increments:\n"
+         "# alpha1 is its steering noise (var phi = alpha1 phi^2 + 1e-4 rad^2), alpha3 its\n"
+         "# distance noise (var s = alpha3 s^2); alpha2 and alpha4 are not read by this model.\n"
+      << quality(k.quality, "arcs") << "# " << k.outliers
+      << " arcs beyond 4 sigma of a first fit left out";
+    if (!r.with_reference) {
+      y << "; pose noise fitted alongside: " << num(k.pose_variance_xy) << " m^2, "
+        << num(k.pose_variance_theta) << " rad^2";
+    }
+    y << ".\n";
   }
   y << "alpha1: " << num(c.alpha1) << "\n"
     << "alpha2: " << num(c.alpha2) << "\n"

@@ -114,6 +114,11 @@ void print_summary(const replay::CalibrationResult& r, const std::filesystem::pa
       "%.3f)\n",
       a.alpha1, a.alpha2, a.alpha3, a.alpha4, f.odometry.translation_bias,
       f.odometry.rotation_bias);
+  if (f.ackermann) {
+    std::printf("  ackermann     alpha1 (steering) %.4g  alpha3 (distance) %.4g, %zu arcs\n",
+                f.ackermann->alpha_steering, f.ackermann->alpha_distance,
+                f.ackermann->quality.samples);
+  }
   std::printf("  config        %s\n", yaml.string().c_str());
 }
 

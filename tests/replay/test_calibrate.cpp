@@ -169,6 +169,25 @@ TEST(CalibrateSimulated, ConfigLoadsAndCarriesTheFit) {
   EXPECT_NE(test::read_bytes(yaml).find("log-likelihood"), std::string::npos);
 }
 
+/// With an Ackermann config the config carries the Ackermann fit in the model's alphas (alpha1
+/// steering, alpha3 distance) and says what they are. The simulated robot turns on the spot,
+/// so only its arcs are used; recovery is CalibrateAckermann's, on draws from the model.
+TEST(CalibrateSimulated, AckermannConfigCarriesTheArcFit) {
+  CalibrationOptions o = simulated(kSettings[0], test::temp_dir());
+  o.config.odom_model_type = OdomModel::kAckermann;
+  const CalibrationResult r = calibrate(o);
+  const CalibrationRound& f = r.rounds.back();
+  ASSERT_TRUE(f.ackermann.has_value());
+  EXPECT_GT(f.ackermann->quality.samples, 100U);
+  EXPECT_LT(f.ackermann->quality.samples, f.odometry.quality.samples);
+  const std::filesystem::path yaml = write_calibration(r, test::temp_dir() / "ackermann");
+  const LoadedConfig loaded = load_config(yaml);
+  EXPECT_EQ(loaded.config.odom_model_type, OdomModel::kAckermann);
+  EXPECT_NEAR(loaded.config.alpha1, f.ackermann->alpha_steering, 1e-5 * loaded.config.alpha1);
+  EXPECT_NEAR(loaded.config.alpha3, f.ackermann->alpha_distance, 1e-5 * loaded.config.alpha3);
+  EXPECT_NE(test::read_bytes(yaml).find("Ackermann (bicycle"), std::string::npos);
+}
+
 // --- bad input -----------------------------------------------------------------------------
 
 std::string error_of(const CalibrationOptions& o) {

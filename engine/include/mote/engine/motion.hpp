@@ -80,6 +80,19 @@ struct AckermannModel {
 
 static_assert(MotionModel<OdometryModel> && MotionModel<OmniModel> && MotionModel<AckermannModel>);
 
+/// One circular arc of the bicycle model: signed length (m, negative when reversing) and
+/// steering angle (rad).
+struct AckermannArc {
+  double length = 0.0;
+  double steering = 0.0;
+};
+
+/// The arc AckermannModel reads an increment (dx, dy, dtheta) in the previous body frame as:
+/// s = chord * (dtheta/2) / sin(dtheta/2), signed by dx, and phi = atan(L dtheta / s), clamped
+/// to +-max_steering (0 when s is 0).
+[[nodiscard]] AckermannArc ackermann_arc(const Pose2& increment, double wheelbase,
+                                         double max_steering) noexcept;
+
 /// Moves every particle (and padding lane) by model, with randomness keyed by (seed, step,
 /// particle index, RngPurpose::kMotion). Runs in the current task arena (mote::Executor).
 template <MotionModel M>

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -137,6 +138,26 @@ struct MotionResidual {
 [[nodiscard]] OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples,
                                              bool estimated_poses = false);
 
+/// The Ackermann (bicycle) model's noise as the fit found it (AckermannModel, motion.hpp).
+struct AckermannFit {
+  double alpha_distance = 0;  ///< variance of the arc length per length^2: the config's alpha3
+  double alpha_steering = 0;  ///< variance of the steering angle per angle^2: alpha1
+  /// Variance the pose source adds to each increment, m^2 and rad^2 (0 against a reference).
+  double pose_variance_xy = 0, pose_variance_theta = 0;
+  std::size_t outliers = 0;  ///< increments beyond 4 sigma of a first fit, left out
+  FitQuality quality;        ///< quality.samples: the increments that are arcs, outliers out
+};
+
+/// Maximum likelihood of the increments under AckermannModel's density: each increment, of
+/// the odometry and of the trajectory, read as an arc (ackermann_arc); the trajectory's arc
+/// length and steering angle Gaussian around the odometry's, with variances alpha_distance s^2
+/// and alpha_steering phi^2 + the model's steering floor, plus the poses' noise (their known
+/// covariance and, for estimated_poses, a fitted floor as in fit_odometry_noise). Increments
+/// that are no arc a car drives (shorter than 1 cm, 5 cm between estimated poses, or at full
+/// lock) are left out. Throws Error when fewer than 30 remain.
+[[nodiscard]] AckermannFit fit_ackermann_noise(const std::vector<MotionSample>& samples,
+                                               double wheelbase, bool estimated_poses = false);
+
 // --- the whole calibration ----------------------------------------------------------------
 
 /// What calibrate() reports while it runs: round (0-based), scans of this round done, total.
@@ -163,9 +184,10 @@ struct CalibrationRound {
   BeamFit beam;
   FieldFit field;
   OdometryFit odometry;
-  std::size_t poses = 0;          ///< poses the fits used
-  double largest_change = 0;      ///< against the previous round (relative)
-  std::string largest_change_of;  ///< which parameter
+  std::optional<AckermannFit> ackermann;  ///< when the config's odom_model_type is ackermann
+  std::size_t poses = 0;                  ///< poses the fits used
+  double largest_change = 0;              ///< against the previous round (relative)
+  std::string largest_change_of;          ///< which parameter
 };
 
 /// Plot data: the per-beam range error z - z* and the odometry residuals.
