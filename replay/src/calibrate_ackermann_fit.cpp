@@ -25,6 +25,9 @@ constexpr double kExactPoseVar = 1e-8;  // a reference trajectory is taken as ex
 constexpr std::size_t kMinSamples = 30;
 constexpr int kEvaluations = 20000;
 constexpr double kOutlier = 16.0;  // squared Mahalanobis distance: 4 sigma
+// Odometry arcs steered beyond this share of full lock are left out: the motion's arc would
+// reach the lock, where the model clamps it, within a few sigma of steering noise.
+constexpr double kLockShare = 0.75;
 
 // One increment as the arcs of the odometry and of the motion, with what the poses' noise adds.
 struct ArcResidual {
@@ -33,6 +36,7 @@ struct ArcResidual {
   double pose_along = 0;     // m^2, the poses' known position variance along the motion
   double pose_theta = 0;     // rad^2, both poses' known heading variance
   double phi_per_theta = 0;  // d phi / d dtheta at the motion: heading noise seen in phi
+  double phi_per_s = 0;      // d phi / d s at the motion: position noise along it seen in phi
 };
 
 struct Params {
@@ -44,11 +48,14 @@ Params params_from(const std::vector<double>& v, bool estimated) {
 }
 
 // -log of the two independent Gaussians up to the constant, and the larger squared
-// Mahalanobis distance of the two (for the outlier cut).
+// Mahalanobis distance of the two (for the outlier cut). The poses' position noise along the
+// motion also moves phi (through s); that correlation between the two residuals is left out.
 double sample_nll(const ArcResidual& r, const Params& p, double floor, double* worst = nullptr) {
-  const double vs = p.distance * r.s_odom * r.s_odom + r.pose_along + p.pose_xy;
+  const double along = r.pose_along + p.pose_xy;
+  const double vs = p.distance * r.s_odom * r.s_odom + along;
   const double vphi = p.steering * r.phi_odom * r.phi_odom + floor +
-                      r.phi_per_theta * r.phi_per_theta * (r.pose_theta + 2 * p.pose_theta);
+                      r.phi_per_theta * r.phi_per_theta * (r.pose_theta + 2 * p.pose_theta) +
+                      r.phi_per_s * r.phi_per_s * along;
   const double qs = r.ds * r.ds / vs;
   const double qphi = r.dphi * r.dphi / vphi;
   if (worst != nullptr) *worst = std::max(qs, qphi);
@@ -65,16 +72,22 @@ double project(const PoseCovariance& c, double x, double y) {
   return c.xx * x * x + 2 * c.xy * x * y + c.yy * y * y;
 }
 
-// The arcs of one increment, or nothing when either has no steering angle to speak of: a step
-// too short for its direction (a turn on the spot is no arc a car drives) or one the model
-// clamps at full lock.
+bool finite(const Pose2& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+}
+
+// The arcs of one increment, or nothing when the odometry's has no steering angle to speak of:
+// a step too short for its direction (a turn on the spot is no arc a car drives), one near full
+// lock (where the model clamps the motion's arc, cutting its residual off), or one that is not
+// finite. The choice looks at the odometry only: choosing on the motion's arc would cut off
+// the very noise being fitted.
 bool arc_residual(const MotionSample& m, const AckermannModel& model, double min_travel,
                   ArcResidual& r) {
+  if (!finite(m.odometry) || !finite(m.motion)) return false;
   const AckermannArc o = ackermann_arc(m.odometry, model.wheelbase, model.max_steering);
   const AckermannArc t = ackermann_arc(m.motion, model.wheelbase, model.max_steering);
-  const double lock = 0.999 * model.max_steering;
-  if (std::abs(o.length) < min_travel || std::abs(t.length) < min_travel ||
-      std::abs(o.steering) >= lock || std::abs(t.steering) >= lock) {
+  if (std::abs(o.length) < min_travel || std::abs(o.steering) > kLockShare * model.max_steering ||
+      t.length == 0.0) {
     return false;
   }
   r.s_odom = o.length;
@@ -86,10 +99,12 @@ bool arc_residual(const MotionSample& m, const AckermannModel& model, double min
   const double ux = std::cos(heading), uy = std::sin(heading);
   r.pose_along = project(m.before, ux, uy) + project(m.after, ux, uy);
   r.pose_theta = m.before.tt + m.after.tt;
-  // phi = atan(L dtheta / s): d phi / d dtheta = (L / s) / (1 + (L dtheta / s)^2).
+  // phi = atan(q), q = L dtheta / s: d phi / d dtheta = (L / s) / (1 + q^2) and
+  // d phi / d s = -(q / s) / (1 + q^2) = -sin(2 phi) / (2 s).
   const double k = model.wheelbase / t.length;
   const double q = k * m.motion.theta;
   r.phi_per_theta = k / (1 + q * q);
+  r.phi_per_s = -(q / t.length) / (1 + q * q);
   return true;
 }
 
@@ -117,12 +132,15 @@ AckermannFit fit_ackermann_noise(const std::vector<MotionSample>& samples, doubl
     ArcResidual r;
     if (arc_residual(m, model, min_travel, r)) rs.push_back(r);
   }
-  if (rs.size() < kMinSamples) {
-    throw Error("Ackermann fit: " + std::to_string(rs.size()) + " of " +
-                std::to_string(samples.size()) + " increments are arcs a car drives (longer than " +
-                std::to_string(min_travel) + " m, short of full lock), at least " +
-                std::to_string(kMinSamples) + " needed");
-  }
+  const auto check_count = [&](const char* which) {
+    if (rs.size() < kMinSamples) {
+      throw Error("Ackermann fit: " + std::to_string(rs.size()) + " of " +
+                  std::to_string(samples.size()) + " increments " + which + " (longer than " +
+                  std::to_string(min_travel) + " m, steered below 3/4 of full lock), at least " +
+                  std::to_string(kMinSamples) + " needed");
+    }
+  };
+  check_count("are arcs a car drives");
   const double floor = model.steering_floor;
   const Params start{model.alpha_distance, model.alpha_steering, 1e-4, 1e-4};
   AckermannFit fit;
@@ -139,14 +157,24 @@ AckermannFit fit_ackermann_noise(const std::vector<MotionSample>& samples, doubl
   fit.quality.iterations = evals;
   // Increments beyond 4 sigma of the first fit are poses the trajectory got wrong, not
   // odometry noise (as in the diff fit): left out and the fit repeated.
+  // Arcs whose motion could reach full lock within 3 sigma of the first fit's steering noise
+  // go too: the model clamps there, so their residual is cut off (the fixed 3/4 of the lock
+  // above is only a first guess, too little for noisy steering).
   std::vector<ArcResidual> kept;
+  std::size_t near_lock = 0;
   for (const ArcResidual& r : rs) {
     double worst = 0;
     sample_nll(r, p, floor, &worst);
-    if (worst < kOutlier) kept.push_back(r);
+    const double sd_phi = std::sqrt(p.steering * r.phi_odom * r.phi_odom + floor);
+    if (std::abs(r.phi_odom) + 3 * sd_phi >= model.max_steering) {
+      ++near_lock;
+    } else if (worst < kOutlier) {
+      kept.push_back(r);
+    }
   }
-  fit.outliers = rs.size() - kept.size();
+  fit.outliers = rs.size() - kept.size() - near_lock;
   rs = std::move(kept);
+  check_count("are arcs a car drives, within 4 sigma of a first fit and 3 sigma of the lock");
   p = fit_once();
   fit.quality.iterations += evals;
   fit.alpha_distance = p.distance;

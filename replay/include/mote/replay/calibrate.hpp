@@ -104,8 +104,9 @@ struct OdometryFit {
   /// the config carries alphas_zero_mean, the noise that covers them too.
   double translation_bias = 0, rotation_bias = 0;
   OdometryAlphas alphas_zero_mean;  ///< diff model fitted with the biases held at 0
-  /// Variance the pose source adds to each increment (the filter's own estimates jitter), m^2
-  /// and rad^2; about 0 against reference poses.
+  /// Noise floor of the pose source (the filter's own estimates jitter): m^2 per increment
+  /// along the motion, rad^2 per pose (each increment gets it twice); about 0 against
+  /// reference poses.
   double pose_variance_xy = 0, pose_variance_theta = 0;
   std::size_t outliers = 0;  ///< increments beyond 4 sigma of a first fit, left out
   FitQuality quality;
@@ -142,7 +143,8 @@ struct MotionResidual {
 struct AckermannFit {
   double alpha_distance = 0;  ///< variance of the arc length per length^2: the config's alpha3
   double alpha_steering = 0;  ///< variance of the steering angle per angle^2: alpha1
-  /// Variance the pose source adds to each increment, m^2 and rad^2 (0 against a reference).
+  /// The pose source's noise floor as OdometryFit's: m^2 per increment along the motion, rad^2
+  /// per pose (0 against a reference).
   double pose_variance_xy = 0, pose_variance_theta = 0;
   std::size_t outliers = 0;  ///< increments beyond 4 sigma of a first fit, left out
   FitQuality quality;        ///< quality.samples: the increments that are arcs, outliers out
@@ -153,8 +155,9 @@ struct AckermannFit {
 /// length and steering angle Gaussian around the odometry's, with variances alpha_distance s^2
 /// and alpha_steering phi^2 + the model's steering floor, plus the poses' noise (their known
 /// covariance and, for estimated_poses, a fitted floor as in fit_odometry_noise). Increments
-/// that are no arc a car drives (shorter than 1 cm, 5 cm between estimated poses, or at full
-/// lock) are left out. Throws Error when fewer than 30 remain.
+/// whose odometry is no arc a car drives (shorter than 1 cm, 5 cm between estimated poses,
+/// steered beyond 3/4 of full lock, or not finite) are left out. Throws Error when fewer than
+/// 30 remain, before or after the 4-sigma outlier cut.
 [[nodiscard]] AckermannFit fit_ackermann_noise(const std::vector<MotionSample>& samples,
                                                double wheelbase, bool estimated_poses = false);
 
