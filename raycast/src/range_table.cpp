@@ -70,8 +70,6 @@ double units_for(int width, int height) {
   return units;
 }
 
-}  // namespace
-
 /// Lattice points near a sensor and their offsets from it (cells). Always nine entries, so the
 /// choice among them is a fixed, branch-free loop; entry 0 is the sensor's own block and
 /// missing neighbours carry a mask of all ones below the sign bit that keeps them from being
@@ -116,6 +114,8 @@ struct BeamScratch {
   std::vector<float> dy;
   std::vector<std::int32_t> key;
 };
+
+}  // namespace
 
 struct RangeTable::Impl {
   int width = 0;
@@ -219,11 +219,18 @@ Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) cons
   return c;
 }
 
-/// The table angle nearest to index a_real (fractional, in [0, 2 * n)).
+/// The table angle nearest to index a_real, which callers keep in [0, 2 * n); anything else
+/// finite (an index wrapped with a rounding error, or a huge angle whose wrap lost precision)
+/// is reduced first, so the cast below never sees a value out of int's range.
 inline std::size_t nearest_angle(double a_real, int n) noexcept {
+  if (!(a_real >= 0.0 && a_real < 2.0 * n)) {
+    a_real = std::fmod(a_real, static_cast<double>(n));
+    if (a_real < 0.0) a_real += n;
+    if (!(a_real >= 0.0 && a_real < n)) a_real = 0.0;  // NaN: callers never pass one
+  }
   int a = static_cast<int>(a_real + 0.5);
   if (a >= n) a -= n;
-  if (a < 0 || a >= n) a = ((a % n) + n) % n;
+  if (a >= n) a -= n;
   return static_cast<std::size_t>(a);
 }
 

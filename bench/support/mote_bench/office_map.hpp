@@ -4,14 +4,32 @@
 /// process into a temporary folder as a PGM with its map_server YAML, so every benchmark that
 /// needs a large map reads the same one through the real loader.
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace mote::bench {
+
+/// Writes text to path through a file of this process's own, renamed into place (atomic on one
+/// file system): two benchmark processes that write the same map at once never read a half-
+/// written one. Throws std::runtime_error when the file cannot be written.
+inline void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::path part = path;
+  part += ".part" + std::to_string(::getpid());
+  {
+    std::ofstream out(part, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + part.string());
+  }
+  std::filesystem::rename(part, path);
+}
 
 /// A size x size office-like PGM: free floor inside an unknown margin, random walls and
 /// rectangular rooms (0 = occupied, 254 = free, 205 = unknown), plus its map_server YAML.
@@ -43,12 +61,12 @@ inline std::filesystem::path write_office_map(int size) {
       wall(r, c, r + len, c + 2);
     }
   }
-  std::ofstream(dir / "map.pgm", std::ios::binary) << "P5\n"
-                                                   << size << ' ' << size << "\n255\n"
-                                                   << std::string(px.begin(), px.end());
-  std::ofstream(dir / "map.yaml")
-      << "image: map.pgm\nresolution: 0.05\norigin: [-100.0, -100.0, 0.0]\n"
-         "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  write_file_atomically(dir / "map.pgm", "P5\n" + std::to_string(size) + ' ' +
+                                             std::to_string(size) + "\n255\n" +
+                                             std::string(px.begin(), px.end()));
+  write_file_atomically(dir / "map.yaml",
+                        "image: map.pgm\nresolution: 0.05\norigin: [-100.0, -100.0, 0.0]\n"
+                        "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
   return dir / "map.yaml";
 }
 
