@@ -84,10 +84,9 @@ struct Candidates {
   std::array<std::uint32_t, kCount> missing{};
 };
 
-/// The entries a lookup reads, found before any is read so that a batch issues its loads
-/// back to back (the loads miss the cache; the choice is arithmetic): the entry of the chosen
-/// lattice point and the sensor's own, and the offset along the ray (cells) from the sensor to
-/// each point.
+/// The entries a lookup reads: the entry of the chosen lattice point and the sensor's own, and
+/// the offset along the ray (cells) from the sensor to each point. Chosen for all the beams of
+/// a sensor before any is read, so that the choice (the lookup's cost) runs on vector lanes.
 struct Choice {
   std::size_t entry = 0;
   std::size_t own_entry = 0;
@@ -95,24 +94,13 @@ struct Choice {
   float own_along = 0.0F;
 };
 
-/// Per-beam working arrays of RangeTable::Impl::choose, one entry per beam.
-struct BeamArrays {
-  std::uint32_t* angle;  ///< nearest table angle
-  float* dx;             ///< its direction
-  float* dy;
-  std::int32_t* key;  ///< the running minimum of the candidates' keys
-};
-
-/// BeamArrays for a batch, reused across the sensors of one task.
+/// Per-beam working arrays of RangeTable::Impl::choose, reused across the sensors of one task.
 struct BeamScratch {
   explicit BeamScratch(std::size_t beams) : angle(beams), dx(beams), dy(beams), key(beams) {}
-  [[nodiscard]] BeamArrays arrays() noexcept {
-    return {angle.data(), dx.data(), dy.data(), key.data()};
-  }
-  std::vector<std::uint32_t> angle;
-  std::vector<float> dx;
+  std::vector<std::uint32_t> angle;  ///< nearest table angle
+  std::vector<float> dx;             ///< its direction
   std::vector<float> dy;
-  std::vector<std::int32_t> key;
+  std::vector<std::int32_t> key;  ///< the running minimum of the candidates' keys
 };
 
 }  // namespace
@@ -142,7 +130,7 @@ struct RangeTable::Impl {
   /// Which entries answer for each beam of one sensor, at table angle index
   /// heading + beam_index[b] (fractional, in [0, 2 * angles)).
   void choose(const Candidates& c, double heading, std::span<const double> beam_index,
-              BeamArrays scratch, std::span<Choice> choices) const noexcept;
+              BeamScratch& scratch, std::span<Choice> choices) const noexcept;
   /// The range (m) that choice reads.
   [[nodiscard]] [[gnu::always_inline]] inline float read(const Choice& choice,
                                                          float max_range) const noexcept;
@@ -235,14 +223,14 @@ inline std::size_t nearest_angle(double a_real, int n) noexcept {
 }
 
 void RangeTable::Impl::choose(const Candidates& c, double heading,
-                              std::span<const double> beam_index, BeamArrays scratch,
+                              std::span<const double> beam_index, BeamScratch& scratch,
                               std::span<Choice> choices) const noexcept {
   const std::size_t beams = beam_index.size();
   const int n = options.angles;
-  std::uint32_t* angle = scratch.angle;
-  float* dx = scratch.dx;
-  float* dy = scratch.dy;
-  std::int32_t* key = scratch.key;
+  std::uint32_t* angle = scratch.angle.data();
+  float* dx = scratch.dx.data();
+  float* dy = scratch.dy.data();
+  std::int32_t* key = scratch.key.data();
   for (std::size_t b = 0; b < beams; ++b) {
     angle[b] = static_cast<std::uint32_t>(nearest_angle(heading + beam_index[b], n));
     dx[b] = cos_a[angle[b]];
@@ -299,14 +287,10 @@ float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
   const double n = options.angles;
   double a_real = angle * n / (2.0 * std::numbers::pi);
   a_real -= n * std::floor(a_real / n);
-  std::uint32_t table_angle = 0;
-  float dx = 0.0F;
-  float dy = 0.0F;
-  std::int32_t key = 0;
   const double beam = 0.0;
+  BeamScratch scratch(1);
   Choice choice;
-  choose(candidates(i, j, ray.ox, ray.oy), a_real, {&beam, 1}, {&table_angle, &dx, &dy, &key},
-         {&choice, 1});
+  choose(candidates(i, j, ray.ox, ray.oy), a_real, {&beam, 1}, scratch, {&choice, 1});
   return read(choice, max_range);
 }
 
@@ -363,7 +347,7 @@ void RangeTable::cast(const RayBatch& batch, std::span<float> ranges) const {
           } else {
             const Candidates near = t.candidates(i, j, s.ox, s.oy);
             const double heading = wrap(std::atan2(s.s, s.c) * per_rad);
-            t.choose(near, heading, beam_index, scratch.arrays(), choices);
+            t.choose(near, heading, beam_index, scratch, choices);
             for (std::size_t b = 0; b < beams; ++b) out[b] = t.read(choices[b], batch.max_range);
           }
         }
