@@ -134,13 +134,18 @@ bool BlockedBeamFilter::focused(const std::vector<PoseEstimate>& clusters, doubl
   return settled >= kFocusedWeight;
 }
 
+bool BlockedBeamFilter::focused_on(const BeamSet& beams, const ScanFit& fit,
+                                   const std::vector<PoseEstimate>& clusters) {
+  return focused(clusters, hit_band(fit.mixture(), beams.range_max), mean_endpoint_range(beams));
+}
+
 std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleView& p,
                                           const ScanFit& fit,
                                           const std::vector<PoseEstimate>& clusters) {
   const std::size_t n = p.size();
   const double band = hit_band(fit.mixture(), beams.range_max);
   if (n == 0 || beams.empty() || !std::isfinite(band)) return 0;
-  if (!focused(clusters, band, mean_endpoint_range(beams))) return 0;
+  if (!focused_on(beams, fit, clusters)) return 0;
   const FieldWalker walk(fit);
   samples_.clear();
   total_ = 0.0;

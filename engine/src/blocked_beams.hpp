@@ -53,6 +53,9 @@ class BlockedBeamFilter {
   /// yet those readings are what tells the poses apart.
   [[nodiscard]] static bool focused(const std::vector<PoseEstimate>& clusters, double band,
                                     double range);
+  /// focused() at the hit band of fit's mixture and the mean range of the endpoints of beams.
+  [[nodiscard]] static bool focused_on(const BeamSet& beams, const ScanFit& fit,
+                                       const std::vector<PoseEstimate>& clusters);
   /// Position standard deviation plus heading standard deviation times `range`: how far the
   /// cluster's spread moves an endpoint at that range.
   [[nodiscard]] static double endpoint_spread(const PoseEstimate& cluster, double range);

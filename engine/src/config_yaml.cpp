@@ -108,6 +108,7 @@ const std::vector<Key>& keys() {
            c.likelihood_tempering = n.as<std::string>() == "auto" ? 0.0 : n.as<double>();
          }},
         field<double>("tempering_ess_fraction", kNum, &LocalizerConfig::tempering_ess_fraction),
+        field<double>("tracking_tempering", kNum, &LocalizerConfig::tracking_tempering),
         field<double>("global_particles_per_bin", kNum, &LocalizerConfig::global_particles_per_bin),
         field<double>("recovery_fit_band", kNum, &LocalizerConfig::recovery_fit_band),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),

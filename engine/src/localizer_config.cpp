@@ -79,6 +79,9 @@ void validate_sensor(const LocalizerConfig& c) {
   require(std::isfinite(c.likelihood_tempering) && c.likelihood_tempering >= 0.0 &&
               c.likelihood_tempering <= 1.0,
           "likelihood_tempering", "an exponent in (0, 1], or 0 to choose it per update");
+  require(std::isfinite(c.tracking_tempering) && c.tracking_tempering >= 0.0 &&
+              c.tracking_tempering <= 1.0,
+          "tracking_tempering", "an exponent in (0, 1], or 0 for none");
   require(finite_positive(c.tempering_ess_fraction) && c.tempering_ess_fraction < 1.0,
           "tempering_ess_fraction", "a fraction in (0, 1)");
   require(std::isfinite(c.laser_min_range), "laser_min_range", "a finite number");

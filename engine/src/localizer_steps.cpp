@@ -187,6 +187,10 @@ void Localizer::Impl::weigh() {
 void Localizer::Impl::temper() {
   const ParticleView p = store.view();
   double tau = config.likelihood_tempering;
+  if (tau == 0.0 && config.tracking_tempering > 0.0 &&
+      BlockedBeamFilter::focused_on(beams, fit, estimate.clusters)) {
+    tau = config.tracking_tempering;
+  }
   if (tau == 0.0) {
     const TemperingConfig search{.target_ess_fraction = config.tempering_ess_fraction};
     const TemperingChoice choice =

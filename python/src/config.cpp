@@ -53,6 +53,7 @@ namespace {
   X(laser_likelihood_max_dist) \
   X(likelihood_tempering) \
   X(tempering_ess_fraction) \
+  X(tracking_tempering) \
   X(unknown_cells_block_rays) \
   X(ray_casting) \
   X(range_table_angles) \

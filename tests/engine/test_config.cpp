@@ -71,7 +71,8 @@ TEST(LoadConfig, TunedNav2FileOverridesEveryValue) {
 TEST(ParseConfig, FlatMoteFileReadsMoteKeys) {
   const LoadedConfig loaded = parse_config(
       "threads: 2\nseed: 7\nlikelihood_combination: amcl\nodom_model_type: ackermann\n"
-      "wheelbase: 1.2\nlikelihood_tempering: 0.5\nselective_resampling: false\n",
+      "wheelbase: 1.2\nlikelihood_tempering: 0.5\nselective_resampling: false\n"
+      "tracking_tempering: 0.2\n",
       "flat.yaml");
   EXPECT_EQ(loaded.config.threads, 2);
   EXPECT_EQ(loaded.config.seed, 7U);
@@ -79,6 +80,7 @@ TEST(ParseConfig, FlatMoteFileReadsMoteKeys) {
   EXPECT_EQ(loaded.config.odom_model_type, OdomModel::kAckermann);
   EXPECT_DOUBLE_EQ(loaded.config.wheelbase, 1.2);
   EXPECT_DOUBLE_EQ(loaded.config.likelihood_tempering, 0.5);
+  EXPECT_DOUBLE_EQ(loaded.config.tracking_tempering, 0.2);
   EXPECT_DOUBLE_EQ(loaded.config.resample_ess_fraction, 1.0);
   EXPECT_TRUE(loaded.warnings.empty());
 }
@@ -150,6 +152,7 @@ TEST(ParseConfig, DefaultsKeyChoosesTheBase) {
       parse_config("likelihood_tempering: auto\n", "a.yaml").config.likelihood_tempering, 0.0);
   expect_input_error("defaults: ros\n", "expected mote or nav2");
   expect_input_error("likelihood_tempering: 2\n", "likelihood_tempering");
+  expect_input_error("tracking_tempering: -0.1\n", "tracking_tempering");
   expect_input_error("recovery_fit_band: 1\n", "recovery_fit_band");
 }
 

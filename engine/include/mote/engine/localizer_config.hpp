@@ -126,6 +126,12 @@ struct LocalizerConfig {
   /// beams; MRPT's powFactor). 0 (mote's default) chooses tau per update (adaptive tempering,
   /// tempering.hpp); a value in (0, 1] fixes it; 1 is the plain product (nav2).
   double likelihood_tempering = 0.0;
+  /// With adaptive tempering (likelihood_tempering 0): the fixed exponent to use instead once
+  /// the belief has settled on a few tight hypotheses (the unmapped-obstacle filter's test,
+  /// blocked_beams.hpp), e.g. the share of independent beams `mote calibrate` measures from the
+  /// beams' correlation. Global localization keeps the adaptive search, which a fixed exponent
+  /// near 1 defeats; tracking gets the measurement model's own. 0 (default): adaptive throughout.
+  double tracking_tempering = 0.0;
   /// Adaptive tempering: the scan may lower the ESS to this share of its value before the scan.
   double tempering_ess_fraction = 0.1;
   bool unknown_cells_block_rays = true;  ///< beam model: unknown cells stop rays (amcl)

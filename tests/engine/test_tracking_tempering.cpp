@@ -1,0 +1,78 @@
+// tracking_tempering (localizer_config.hpp): with adaptive tempering, the configured exponent
+// replaces the adaptive search once the belief has settled, and only then. On the recorded
+// Intel map with simulated scans: tracking from a known pose uses it from the first update on,
+// global localization keeps the search while the belief is spread over the map.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "mote/engine/localizer.hpp"
+#include "mote/maps/map_loader.hpp"
+#include "mote_test/data.hpp"
+#include "mote_test/scan_simulator.hpp"
+
+namespace mote {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr Pose2 kStart{0.600266, -0.032033, -0.354646};  // first Intel reference pose
+constexpr double kTracking = 0.37;
+
+class TrackingTempering : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+    map_ = std::make_unique<OccupancyGrid>(load_map(yaml));
+  }
+
+  static LocalizerConfig config(double tracking) {
+    LocalizerConfig c;
+    c.min_particles = c.max_particles = 2000;
+    c.update_min_d = c.update_min_a = 0.0;
+    c.tracking_tempering = tracking;
+    return c;
+  }
+
+  // The exponents of five updates while tracking from kStart (5 cm, 2 degrees).
+  std::vector<double> tracked(double tracking) const {
+    Localizer localizer(*map_, config(tracking));
+    localizer.initialize(kStart,
+                         Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 4 * kDeg * kDeg).asDiagonal());
+    test::ScanSimulator sim(*map_, 7);
+    Pose2 truth = kStart;
+    std::vector<double> taus;
+    for (int k = 0; k < 5; ++k) {
+      EXPECT_TRUE(localizer.update(truth, sim.scan_at(truth)));
+      taus.push_back(localizer.last_update().tempering);
+      truth = sim.drive(truth, 0.1);
+    }
+    return taus;
+  }
+
+  std::unique_ptr<OccupancyGrid> map_;
+};
+
+TEST_F(TrackingTempering, SettledBeliefUsesTheConfiguredExponent) {
+  // The first update weighs the initial set, which is already one tight cluster.
+  for (const double tau : tracked(kTracking)) EXPECT_EQ(tau, kTracking);
+}
+
+TEST_F(TrackingTempering, OffKeepsTheAdaptiveSearch) {
+  for (const double tau : tracked(0.0)) {
+    EXPECT_GT(tau, 0.0);
+    EXPECT_NE(tau, kTracking);
+  }
+}
+
+TEST_F(TrackingTempering, GlobalLocalizationKeepsTheAdaptiveSearch) {
+  // Spread over the whole map, the belief is no few tight hypotheses: the search chooses, and
+  // against a dense scan far from most particles it chooses far below the tracking exponent.
+  Localizer localizer(*map_, config(kTracking));
+  localizer.initialize_global();
+  test::ScanSimulator sim(*map_, 5);
+  ASSERT_TRUE(localizer.update(kStart, sim.scan_at(kStart)));
+  EXPECT_LT(localizer.last_update().tempering, kTracking);
+}
+
+}  // namespace
+}  // namespace mote
