@@ -10,6 +10,7 @@
 #include "calibrate_refine.hpp"
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
+#include "mote/engine/beams.hpp"
 #include "mote/engine/localizer.hpp"
 #include "mote/maps/distance_field.hpp"
 #include "mote/maps/map_loader.hpp"
@@ -126,7 +127,29 @@ struct Samples {
   std::vector<BeamSample> beams;
   std::vector<double> distances;
   std::vector<MotionSample> motion;
+  std::vector<BeamSample> filter_beams;  ///< the beams the filter itself uses, for the correlation
 };
+
+// The beams the filter weighs a scan by (select_beams with the config's selection), with their
+// place in that selection: the correlation that matters is the one between the beams the
+// filter multiplies, at its spacing, not at the sensor fits' denser one.
+void collect_filter_beams(const RayCaster& caster, const LaserScan& scan, const Pose2& sensor,
+                          std::size_t scan_index, const LocalizerConfig& c, double range_max,
+                          std::vector<BeamSample>& out) {
+  BeamSet set;
+  select_beams(scan,
+               {.max_beams = c.max_beams,
+                .range_min = c.laser_min_range,
+                .range_max = c.laser_max_range,
+                .keep_max_range = c.laser_model_type == LaserModel::kBeam},
+               set);
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    const double expected = caster.cast_one({sensor.x, sensor.y}, sensor.theta + set.angle[k],
+                                            static_cast<float>(range_max));
+    out.push_back(
+        {std::min<double>(set.range[k], range_max), std::min(expected, range_max), scan_index, k});
+  }
+}
 
 double effective_range_max(const ScanFrame& f, const LocalizerConfig& c) {
   const double r = f.scan.range_max;
@@ -148,6 +171,7 @@ Samples collect(const OccupancyGrid& map, const RayCaster& caster, const Distanc
                           posed[p].covariance, posed[p - 1].pose.theta});
     }
     const Pose2 sensor = compose(posed[p].pose, f.scan.sensor_pose);
+    collect_filter_beams(caster, f.scan, sensor, p, o.config, range_max, s.filter_beams);
     const std::size_t n = f.scan.ranges.size();
     const auto step = std::max<std::size_t>(1, n / static_cast<std::size_t>(o.beams_per_scan));
     for (std::size_t b = step / 2; b < n; b += step) {
@@ -183,6 +207,7 @@ void measure_change(CalibrationRound& r, const CalibrationRound& prev) {
   compare(r.field.params.z_hit, prev.field.params.z_hit, true, "z_hit", r);
   compare(r.beam.params.sigma_hit, prev.beam.params.sigma_hit, false, "beam sigma_hit", r);
   compare(r.beam.params.z_hit, prev.beam.params.z_hit, true, "beam z_hit", r);
+  compare(r.correlation.tempering, prev.correlation.tempering, false, "tracking_tempering", r);
   const OdometryAlphas& a = r.odometry.alphas_zero_mean;
   const OdometryAlphas& b = prev.odometry.alphas_zero_mean;
   compare(a.alpha1, b.alpha1, false, "alpha1", r);
@@ -215,6 +240,7 @@ LocalizerConfig apply_fit(LocalizerConfig c, const CalibrationRound& r) {
     // sigma 0.025 m loses track (ATE 1.9 m), the range error's 0.07 m tracks (0.056 m).
     c.sigma_hit = std::max(r.field.params.sigma_hit, b.sigma_hit);
   }
+  c.tracking_tempering = r.correlation.tempering;
   const OdometryAlphas& a =
       c.odom_model_type == OdomModel::kOmni ? r.odometry.alphas_omni : r.odometry.alphas_zero_mean;
   c.alpha1 = a.alpha1;
@@ -293,6 +319,7 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
     r.poses = posed.size();
     r.beam = fit_beam_mixture(s.beams, range_max);
     r.field = fit_likelihood_field(s.distances, range_max);
+    r.correlation = fit_beam_correlation(s.filter_beams, range_max, r.beam.params.sigma_hit);
     r.odometry = fit_odometry_noise(s.motion, !result.with_reference);
     if (options.config.odom_model_type == OdomModel::kAckermann) {
       r.ackermann = fit_ackermann_noise(s.motion, options.config.wheelbase, !result.with_reference);

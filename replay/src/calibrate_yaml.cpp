@@ -71,6 +71,14 @@ void sensor_section(std::ostringstream& y, const CalibrationResult& r, const Cal
   y << "z_short: " << num(b.z_short) << "  # beam model, table 6.2\n"
     << "z_max: " << num(b.z_max) << "  # beam model, table 6.2\n"
     << "lambda_short: " << num(b.lambda_short) << "  # 1/m, beam model, table 6.2 (exact M-step)\n";
+  const BeamCorrelation& k = f.correlation;
+  y << "# Neighbouring beams' range errors are correlated (rho_1 "
+    << num(k.rho.empty() ? 0.0 : k.rho.front()) << ", " << k.rho.size() << " lags summed, "
+    << k.pairs
+    << " pairs of hits): a scan\n# holds 1 / (1 + 2 sum rho_k) of its beams' "
+       "information (sec. 6.3.4), the exponent below, used once the belief has settled\n"
+       "# (global localization keeps the adaptive search).\n"
+    << "tracking_tempering: " << num(c.tracking_tempering) << "\n";
 }
 
 void motion_section(std::ostringstream& y, const CalibrationResult& r, const CalibrationRound& f) {

@@ -163,6 +163,7 @@ void write_filter_decisions(JsonWriter& json, const ReplayResult& result) {
   const double tau_min = taus.empty() ? 0.0 : *std::min_element(taus.begin(), taus.end());
   json.key("tempering").begin_object();
   json.member("adaptive", result.config.likelihood_tempering == 0.0);
+  json.member("tracking", result.config.tracking_tempering);
   json.member("median", tau.p50).member("min", tau_min).member("max", tau.max);
   json.end_object();
   json.member("injected_particles", injected).member("resampled_updates", resampled);
@@ -176,7 +177,11 @@ void write_filter_decisions(JsonWriter& json, const ReplayResult& result) {
 std::string tempering_text(const ReplayResult& result) {
   std::vector<double> taus;
   for (const UpdateRecord& u : result.updates) taus.push_back(u.tempering);
-  const std::string kind = result.config.likelihood_tempering == 0.0 ? "adaptive" : "fixed";
+  const LocalizerConfig& c = result.config;
+  std::string kind = c.likelihood_tempering == 0.0 ? "adaptive" : "fixed";
+  if (c.likelihood_tempering == 0.0 && c.tracking_tempering > 0.0) {
+    kind += " until settled, then " + str(c.tracking_tempering, 3);
+  }
   return kind + ", median " + str(summarize(taus).p50, 3);
 }
 

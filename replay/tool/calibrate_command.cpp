@@ -96,9 +96,10 @@ void print_summary(const replay::CalibrationResult& r, const std::filesystem::pa
     const replay::CalibrationRound& q = r.rounds[k];
     const OdometryAlphas& a = q.odometry.alphas_zero_mean;
     std::printf(
-        "  round %zu       %zu poses: sigma_hit %.4f m (beam %.4f m), alphas %.4g %.4g %.4g %.4g\n",
-        k + 1, q.poses, q.field.params.sigma_hit, q.beam.params.sigma_hit, a.alpha1, a.alpha2,
-        a.alpha3, a.alpha4);
+        "  round %zu       %zu poses: sigma_hit %.4f m (beam %.4f m), tempering %.3f, alphas %.4g "
+        "%.4g %.4g %.4g\n",
+        k + 1, q.poses, q.field.params.sigma_hit, q.beam.params.sigma_hit, q.correlation.tempering,
+        a.alpha1, a.alpha2, a.alpha3, a.alpha4);
   }
   const replay::FieldMixture& lf = f.field.params;
   const replay::BeamMixture& b = f.beam.params;
@@ -109,6 +110,11 @@ void print_summary(const replay::CalibrationResult& r, const std::filesystem::pa
       "  beam          z_hit %.3f  z_short %.3f  z_max %.3f  z_rand %.3f  sigma_hit %.4f m  "
       "lambda_short %.3f\n",
       b.z_hit, b.z_short, b.z_max, b.z_rand, b.sigma_hit, b.lambda_short);
+  const replay::BeamCorrelation& c = f.correlation;
+  std::printf(
+      "  tempering     %.3f (neighbouring beams' range errors: rho_1 %.3f, %zu lags, %zu "
+      "pairs)\n",
+      c.tempering, c.rho.empty() ? 0.0 : c.rho.front(), c.rho.size(), c.pairs);
   std::printf(
       "  odometry      alpha1 %.4g  alpha2 %.4g  alpha3 %.4g  alpha4 %.4g (bias: trans %.3f, rot "
       "%.3f)\n",

@@ -44,8 +44,10 @@ struct BeamMixture {
 
 /// One beam: the measured range and the range the map predicts at the pose.
 struct BeamSample {
-  double measured = 0;  ///< m
-  double expected = 0;  ///< m, ray cast, <= range_max
+  double measured = 0;   ///< m
+  double expected = 0;   ///< m, ray cast, <= range_max
+  std::size_t scan = 0;  ///< fit_beam_correlation only: which scan the beam is of
+  std::size_t slot = 0;  ///< fit_beam_correlation only: its place among the scan's beams
 };
 
 struct BeamFit {
@@ -59,6 +61,25 @@ struct BeamFit {
 /// z* is not large. Throws Error for fewer than 100 samples.
 [[nodiscard]] BeamFit fit_beam_mixture(const std::vector<BeamSample>& samples, double range_max,
                                        BeamMixture start = {});
+
+/// How much the beams of one scan move together, and the likelihood exponent that makes up for
+/// it. Neighbouring beams that hit the same wall share its map error (a wall drawn a few cm
+/// off, a cluttered shelf), so their range errors are correlated and the product of their
+/// likelihoods counts one error many times (Thrun et al., section 6.3.4). The correlation is
+/// the autocorrelation rho_k of the range errors of hits (|z - z*| < 3 sigma_hit, both beams
+/// of a pair in one scan, k slots apart), summed over the initial positive sequence (lags up
+/// to the first whose rho_k + rho_k+1 is not positive, Geyer 1992, and at most half a scan), and
+/// the exponent is the ratio of effective to actual beams, tau = 1 / (1 + 2 sum_k rho_k) (the
+/// variance inflation of a sum of correlated terms).
+struct BeamCorrelation {
+  std::vector<double> rho;  ///< rho_1, rho_2, ... up to the last lag summed
+  std::size_t pairs = 0;    ///< lag-1 pairs of hits
+  double tempering = 1.0;   ///< tau in [0.01, 1]
+};
+
+/// Throws Error for fewer than 100 lag-1 pairs of hits.
+[[nodiscard]] BeamCorrelation fit_beam_correlation(const std::vector<BeamSample>& samples,
+                                                   double range_max, double sigma_hit);
 
 // --- likelihood field (Thrun table 6.3) -------------------------------------------------
 
@@ -188,6 +209,7 @@ struct CalibrationRound {
   FieldFit field;
   OdometryFit odometry;
   std::optional<AckermannFit> ackermann;  ///< when the config's odom_model_type is ackermann
+  BeamCorrelation correlation;            ///< the scans' beam correlation: the tempering
   std::size_t poses = 0;                  ///< poses the fits used
   double largest_change = 0;              ///< against the previous round (relative)
   std::string largest_change_of;          ///< which parameter
