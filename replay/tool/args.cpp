@@ -114,6 +114,8 @@ void print_help(std::ostream& out, std::string_view usage_line, std::string_view
     std::string left = "--";
     left.append(s.name);
     if (!s.value.empty()) left.append(" ").append(s.value);
+    // A flag wider than the column gets its help on the next line, not glued to it.
+    if (left.size() >= 26) left.append("\n").append(28, ' ');
     out << "  " << std::left << std::setw(26) << left << s.help << '\n';
   }
   out << "  " << std::left << std::setw(26) << "--help"
