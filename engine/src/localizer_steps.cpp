@@ -206,6 +206,7 @@ void Localizer::Impl::normalize() {
   const NormalizeResult result = mote::normalize(store.view(), config.grain);
   degenerate = !result.ok();
   stats.effective_sample_size = result.effective_sample_size;
+  stats.log_evidence = beams.empty() ? 0.0 : result.log_mean_likelihood;
   // Thrun table 8.3, lines 10-11, on the scan fit instead of w_avg (scan_fit.hpp says why),
   // at the posterior weights: injected particles that explain nothing weigh nothing there,
   // so only a set whose best hypotheses fit badly lowers it (at the prior weights, each

@@ -49,6 +49,7 @@ void record_update(ReplayResult& result, const Localizer& filter, double stamp) 
                             .effective_sample_size = stats.effective_sample_size,
                             .tempering = stats.tempering,
                             .scan_fit = stats.scan_fit,
+                            .log_evidence = stats.log_evidence,
                             .injected = stats.injected,
                             .resampled = stats.resampled,
                             .alphas = stats.alphas});

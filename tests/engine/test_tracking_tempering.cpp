@@ -4,6 +4,7 @@
 // global localization keeps the search while the belief is spread over the map.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 #include "mote/engine/localizer.hpp"
@@ -72,6 +73,34 @@ TEST_F(TrackingTempering, GlobalLocalizationKeepsTheAdaptiveSearch) {
   test::ScanSimulator sim(*map_, 5);
   ASSERT_TRUE(localizer.update(kStart, sim.scan_at(kStart)));
   EXPECT_LT(localizer.last_update().tempering, kTracking);
+}
+
+// UpdateStats::log_evidence, the scan's predictive log-likelihood under the filter's prior: a
+// cloud around the true pose explains the scan far better than one half a metre away.
+TEST(LogEvidence, IsHigherForAPriorAroundTheTruth) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const OccupancyGrid map = load_map(yaml);
+  LocalizerConfig c;
+  c.min_particles = c.max_particles = 2000;
+  c.likelihood_tempering = 1.0;
+  c.z_hit = 0.9;
+  c.z_rand = 0.1;
+  c.sigma_hit = 0.05;
+  test::ScanSimulator sim(map, 3);
+  const LaserScan scan = sim.scan_at(kStart);
+  const auto evidence_from = [&](const Pose2& mean) {
+    Localizer localizer(map, c);
+    localizer.initialize(mean,
+                         Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 4 * kDeg * kDeg).asDiagonal());
+    EXPECT_TRUE(localizer.update(kStart, scan));
+    return localizer.last_update().log_evidence;
+  };
+  const double at_truth = evidence_from(kStart);
+  const double off = evidence_from({kStart.x + 0.5, kStart.y, kStart.theta});
+  EXPECT_TRUE(std::isfinite(at_truth));
+  EXPECT_TRUE(std::isfinite(off));
+  // 60 beams at sigma_hit 0.05 m: half a metre off costs tens of nats.
+  EXPECT_GT(at_truth, off + 10.0) << at_truth << " " << off;
 }
 
 }  // namespace

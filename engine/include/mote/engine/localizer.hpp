@@ -92,6 +92,12 @@ struct UpdateStats {
   /// Per-beam geometric mean of the likelihood-field density at the posterior particles
   /// (scan_fit.hpp): what augmented MCL's w_slow / w_fast average; 0 when recovery is off.
   double scan_fit = 0.0;
+  /// log sum_i w_prev,i p(z | x_i)^tau over the weighed set: the filter's estimate of the
+  /// scan's predictive likelihood p(z_t | z_1:t-1, u_1:t) under the tempered model
+  /// (NormalizeResult::log_mean_likelihood), in nats. Summed over a run it is the log
+  /// marginal likelihood of the log that parameter choices compare by. -inf when no particle
+  /// explained the scan, 0 for an update that weighed no beam.
+  double log_evidence = 0.0;
   /// The odometry noise the next motion step samples with (config's until adapted).
   OdometryAlphas alphas;
   double log_w_slow = 0.0;  ///< augmented MCL averages of scan_fit (table 8.3), log domain

@@ -65,6 +65,7 @@ struct UpdateRecord {
   double effective_sample_size = 0.0;  ///< of the weighed set
   double tempering = 1.0;              ///< likelihood exponent applied
   double scan_fit = 0.0;               ///< share of endpoints the map explains (recovery)
+  double log_evidence = 0.0;           ///< UpdateStats::log_evidence, nats
   std::size_t injected = 0;            ///< recovery particles
   bool resampled = false;
   OdometryAlphas alphas;  ///< odometry noise in use after the update

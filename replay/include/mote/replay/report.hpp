@@ -47,8 +47,8 @@ void print_summary(std::ostream& out, const ReplayResult& result,
 
 /// Writes one CSV line per update that ran: stamp, particles, weighed, beams, blocked_beams, ess,
 /// tempering,
-/// scan_fit, injected, resampled, alpha1..alpha4, total_ms. Throws mote::Error when it cannot be
-/// written.
+/// scan_fit, log_evidence, injected, resampled, alpha1..alpha4, total_ms. Throws mote::Error when
+/// it cannot be written.
 void write_updates_csv(const std::filesystem::path& file, const ReplayResult& result);
 
 /// Creates `dir` if needed and writes report.json, trajectory.tum, updates.csv and map.png into it
