@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
+#include <concepts>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -17,18 +19,53 @@ namespace mote {
 namespace {
 
 using Setter = std::function<void(LocalizerConfig&, const YAML::Node&)>;
+using Getter = std::function<std::string(const LocalizerConfig&)>;
 
 struct Key {
   std::string_view name;
   std::string_view expected;  // for error messages
   Setter set;
+  Getter get;  // the value as the setter reads it back; empty for an alias of another key
 };
+
+// Shortest text that reads back to the same double (std::to_chars round-trips).
+std::string text_of(double v) {
+  std::array<char, 32> buf{};
+  const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), v).ptr;
+  return {buf.data(), end};
+}
+std::string text_of(bool v) { return v ? "true" : "false"; }
+template <std::integral T>
+std::string text_of(T v) {
+  return std::to_string(v);
+}
 
 template <class T, class Field>
 Key field(std::string_view name, std::string_view expected, Field LocalizerConfig::*member) {
   return {name, expected,
-          [member](LocalizerConfig& c, const YAML::Node& n) { c.*member = n.as<T>(); }};
+          [member](LocalizerConfig& c, const YAML::Node& n) { c.*member = n.as<T>(); },
+          [member](const LocalizerConfig& c) { return text_of(static_cast<T>(c.*member)); }};
 }
+
+const char* name_of(LaserModel m) { return m == LaserModel::kBeam ? "beam" : "likelihood_field"; }
+
+const char* name_of(OdomModel m) {
+  switch (m) {
+    case OdomModel::kOmni:
+      return "omni";
+    case OdomModel::kAckermann:
+      return "ackermann";
+    case OdomModel::kDiff:
+      break;
+  }
+  return "diff";
+}
+
+const char* name_of(LikelihoodCombination m) {
+  return m == LikelihoodCombination::kAmclCubedSum ? "amcl" : "product";
+}
+
+const char* name_of(RayCasting m) { return m == RayCasting::kTable ? "table" : "exact"; }
 
 LaserModel parse_laser_model(const std::string& s) {
   // amcl's likelihood_field_prob adds beam skipping on top of the likelihood field.
@@ -56,11 +93,17 @@ LikelihoodCombination parse_combination(const std::string& s) {
   throw YAML::BadConversion(YAML::Mark::null_mark());
 }
 
+template <class Enum>
 Key enum_key(std::string_view name, std::string_view expected,
-             std::function<void(LocalizerConfig&, const std::string&)> set) {
-  return {name, expected, [set = std::move(set)](LocalizerConfig& c, const YAML::Node& n) {
+             std::function<void(LocalizerConfig&, const std::string&)> set,
+             Enum LocalizerConfig::*member) {
+  Getter get;
+  if (member != nullptr) get = [member](const LocalizerConfig& c) { return name_of(c.*member); };
+  return {name, expected,
+          [set = std::move(set)](LocalizerConfig& c, const YAML::Node& n) {
             set(c, n.as<std::string>());
-          }};
+          },
+          std::move(get)};
 }
 
 const std::vector<Key>& keys() {
@@ -106,45 +149,55 @@ const std::vector<Key>& keys() {
         {"likelihood_tempering", "a number or auto",
          [](LocalizerConfig& c, const YAML::Node& n) {
            c.likelihood_tempering = n.as<std::string>() == "auto" ? 0.0 : n.as<double>();
-         }},
+         },
+         [](const LocalizerConfig& c) { return text_of(c.likelihood_tempering); }},
         field<double>("tempering_ess_fraction", kNum, &LocalizerConfig::tempering_ess_fraction),
         field<double>("tracking_tempering", kNum, &LocalizerConfig::tracking_tempering),
         field<double>("global_particles_per_bin", kNum, &LocalizerConfig::global_particles_per_bin),
         field<double>("recovery_fit_band", kNum, &LocalizerConfig::recovery_fit_band),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
-        enum_key("ray_casting", "exact or table",
-                 [](LocalizerConfig& c, const std::string& s) {
-                   if (s != "exact" && s != "table")
-                     throw YAML::BadConversion(YAML::Mark::null_mark());
-                   c.ray_casting = s == "table" ? RayCasting::kTable : RayCasting::kExact;
-                 }),
+        enum_key(
+            "ray_casting", "exact or table",
+            [](LocalizerConfig& c, const std::string& s) {
+              if (s != "exact" && s != "table") throw YAML::BadConversion(YAML::Mark::null_mark());
+              c.ray_casting = s == "table" ? RayCasting::kTable : RayCasting::kExact;
+            },
+            &LocalizerConfig::ray_casting),
         field<int>("range_table_angles", kInt, &LocalizerConfig::range_table_angles),
         field<double>("range_table_budget_mb", kNum, &LocalizerConfig::range_table_budget_mb),
         field<int>("threads", kInt, &LocalizerConfig::threads),
         field<std::uint64_t>("seed", kInt, &LocalizerConfig::seed),
         field<std::size_t>("grain", kInt, &LocalizerConfig::grain),
-        enum_key("laser_model_type", "likelihood_field, likelihood_field_prob or beam",
-                 [](LocalizerConfig& c, const std::string& s) {
-                   c.laser_model_type = parse_laser_model(s);
-                 }),
-        enum_key("odom_model_type", "diff, omni, diff-corrected, omni-corrected or ackermann",
-                 [](LocalizerConfig& c, const std::string& s) {
-                   c.odom_model_type = parse_odom_model(s);
-                 }),
-        enum_key("robot_model_type",
-                 "nav2_amcl::DifferentialMotionModel or nav2_amcl::OmniMotionModel",
-                 [](LocalizerConfig& c, const std::string& s) {
-                   c.odom_model_type = parse_odom_model(s);
-                 }),
-        enum_key("likelihood_combination", "product or amcl",
-                 [](LocalizerConfig& c, const std::string& s) {
-                   c.likelihood_combination = parse_combination(s);
-                 }),
+        enum_key(
+            "laser_model_type", "likelihood_field, likelihood_field_prob or beam",
+            [](LocalizerConfig& c, const std::string& s) {
+              c.laser_model_type = parse_laser_model(s);
+            },
+            &LocalizerConfig::laser_model_type),
+        enum_key(
+            "odom_model_type", "diff, omni, diff-corrected, omni-corrected or ackermann",
+            [](LocalizerConfig& c, const std::string& s) {
+              c.odom_model_type = parse_odom_model(s);
+            },
+            &LocalizerConfig::odom_model_type),
+        enum_key(
+            "robot_model_type", "nav2_amcl::DifferentialMotionModel or nav2_amcl::OmniMotionModel",
+            [](LocalizerConfig& c, const std::string& s) {
+              c.odom_model_type = parse_odom_model(s);
+            },
+            static_cast<OdomModel LocalizerConfig::*>(nullptr)),  // odom_model_type's alias
+        enum_key(
+            "likelihood_combination", "product or amcl",
+            [](LocalizerConfig& c, const std::string& s) {
+              c.likelihood_combination = parse_combination(s);
+            },
+            &LocalizerConfig::likelihood_combination),
         {"selective_resampling", kBool,
          [](LocalizerConfig& c, const YAML::Node& n) {
            // amcl's selective resampling is the N/2 effective-sample-size rule; off = always.
            c.resample_ess_fraction = n.as<bool>() ? 0.5 : 1.0;
-         }},
+         },
+         Getter{}},  // an alias of resample_ess_fraction
     };
     return k;
   }();
@@ -285,6 +338,16 @@ LoadedConfig parse_config(const std::string& yaml_text, const std::string& name)
   }
   validate(loaded.config, params, name);
   return loaded;
+}
+
+std::string config_yaml(const LocalizerConfig& config, const LocalizerConfig& base) {
+  std::string yaml;
+  for (const Key& k : keys()) {
+    if (!k.get) continue;
+    const std::string value = k.get(config);
+    if (value != k.get(base)) yaml += std::string(k.name) + ": " + value + "\n";
+  }
+  return yaml;
 }
 
 LoadedConfig load_config(const std::filesystem::path& yaml) {

@@ -82,6 +82,11 @@ void validate_sensor(const LocalizerConfig& c) {
   require(std::isfinite(c.tracking_tempering) && c.tracking_tempering >= 0.0 &&
               c.tracking_tempering <= 1.0,
           "tracking_tempering", "an exponent in (0, 1], or 0 for none");
+  // tracking_tempering replaces the adaptive search once the belief has settled; with a fixed
+  // exponent there is no search to replace and it would be silently ignored.
+  require(c.tracking_tempering == 0.0 || c.likelihood_tempering == 0.0, "tracking_tempering",
+          "0 when likelihood_tempering fixes the exponent (it replaces the adaptive search of "
+          "likelihood_tempering: 0 once the belief has settled)");
   require(finite_positive(c.tempering_ess_fraction) && c.tempering_ess_fraction < 1.0,
           "tempering_ess_fraction", "a fraction in (0, 1)");
   require(std::isfinite(c.laser_min_range), "laser_min_range", "a finite number");

@@ -2,6 +2,7 @@
 // YAML loader (warnings for unknown keys become Python warnings).
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <string>
 
 #include "bindings.hpp"
@@ -146,6 +147,14 @@ void bind_config(py::module_& m) {
       py::arg("path"),
       "Reads a LocalizerConfig from YAML (flat amcl names or a nav2 params file). Unknown keys "
       "give a warning; a wrong type or out-of-range value raises InputError naming file and key.");
+  m.def(
+      "config_yaml",
+      [](const LocalizerConfig& config, const std::optional<LocalizerConfig>& base) {
+        return config_yaml(config, base.value_or(LocalizerConfig{}));
+      },
+      py::arg("config"), py::arg("base") = py::none(),
+      "The flat YAML of every field that differs from base (default: mote's defaults); "
+      "load_config reads it back exactly.");
 }
 
 }  // namespace mote::python

@@ -62,6 +62,20 @@ def test_load_config(tmp_path):
         mote.load_config(str(f))
 
 
+def test_config_yaml_round_trips(tmp_path):
+    c = mote.LocalizerConfig(
+        max_particles=3000, alpha2=0.1 + 0.2, odom_model_type=mote.OdomModel.ACKERMANN
+    )
+    text = mote.config_yaml(c)
+    assert "odom_model_type: ackermann\n" in text and "seed" not in text
+    f = tmp_path / "c.yaml"
+    f.write_text(text)
+    back = mote.load_config(str(f))
+    assert back.max_particles == 3000 and back.alpha2 == 0.1 + 0.2
+    assert back.odom_model_type == mote.OdomModel.ACKERMANN
+    assert mote.config_yaml(mote.nav2_defaults(), mote.nav2_defaults()) == ""
+
+
 def test_bad_map_path_raises_input_error_naming_the_file(tmp_path):
     missing = tmp_path / "nope.yaml"
     with pytest.raises(mote.InputError, match=re.escape(str(missing))) as info:

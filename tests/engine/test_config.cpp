@@ -9,6 +9,7 @@ namespace mote {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 TEST(LoadConfig, Nav2DefaultsFileGivesNav2Defaults) {
   const LoadedConfig loaded = load_config(test::project_test_data() / "nav2_params.yaml");
@@ -71,8 +72,7 @@ TEST(LoadConfig, TunedNav2FileOverridesEveryValue) {
 TEST(ParseConfig, FlatMoteFileReadsMoteKeys) {
   const LoadedConfig loaded = parse_config(
       "threads: 2\nseed: 7\nlikelihood_combination: amcl\nodom_model_type: ackermann\n"
-      "wheelbase: 1.2\nlikelihood_tempering: 0.5\nselective_resampling: false\n"
-      "tracking_tempering: 0.2\n",
+      "wheelbase: 1.2\nlikelihood_tempering: 0.5\nselective_resampling: false\n",
       "flat.yaml");
   EXPECT_EQ(loaded.config.threads, 2);
   EXPECT_EQ(loaded.config.seed, 7U);
@@ -80,9 +80,10 @@ TEST(ParseConfig, FlatMoteFileReadsMoteKeys) {
   EXPECT_EQ(loaded.config.odom_model_type, OdomModel::kAckermann);
   EXPECT_DOUBLE_EQ(loaded.config.wheelbase, 1.2);
   EXPECT_DOUBLE_EQ(loaded.config.likelihood_tempering, 0.5);
-  EXPECT_DOUBLE_EQ(loaded.config.tracking_tempering, 0.2);
   EXPECT_DOUBLE_EQ(loaded.config.resample_ess_fraction, 1.0);
   EXPECT_TRUE(loaded.warnings.empty());
+  EXPECT_DOUBLE_EQ(parse_config("tracking_tempering: 0.2\n", "t.yaml").config.tracking_tempering,
+                   0.2);
 }
 
 void expect_input_error(const std::string& text, const std::string& fragment) {
@@ -153,6 +154,10 @@ TEST(ParseConfig, DefaultsKeyChoosesTheBase) {
   expect_input_error("defaults: ros\n", "expected mote or nav2");
   expect_input_error("likelihood_tempering: 2\n", "likelihood_tempering");
   expect_input_error("tracking_tempering: -0.1\n", "tracking_tempering");
+  // A fixed exponent has no adaptive search for tracking_tempering to replace.
+  expect_input_error("likelihood_tempering: 0.3\ntracking_tempering: 0.2\n",
+                     "0 when likelihood_tempering fixes the exponent");
+  expect_input_error("defaults: nav2\ntracking_tempering: 0.2\n", "tracking_tempering");
   expect_input_error("recovery_fit_band: 1\n", "recovery_fit_band");
 }
 
@@ -222,6 +227,88 @@ TEST(ParseConfig, RayCastingSelectsExactOrTable) {
   expect_input_error("ray_casting: fast\n", "line 1, key 'ray_casting': expected exact or table");
   expect_input_error("range_table_angles: 100\n", "range_table_angles");
   expect_input_error("range_table_budget_mb: 0\n", "range_table_budget_mb");
+}
+
+// Every field away from its default, each to a value validate() accepts.
+LocalizerConfig every_field_changed() {
+  LocalizerConfig c;
+  c.min_particles = 300;
+  c.max_particles = 9000;
+  c.global_particles_per_bin = 2.5;
+  c.pf_err = 0.02;
+  c.pf_z = 0.95;
+  c.kld_z_is_quantile = true;
+  c.kld_bin_xy = 0.3;
+  c.kld_bin_theta = 0.1 + 0.2;  // 0.30000000000000004: doubles must round-trip exactly
+  c.resample_interval = 2;
+  c.resample_ess_fraction = 0.4;
+  c.recovery_alpha_slow = 0.002;
+  c.recovery_alpha_fast = 0.2;
+  c.recovery_fit_band = 0.25;
+  c.update_min_d = 0.1;
+  c.update_min_a = 0.05;
+  c.odom_jump_max_d = 3.0;
+  c.odom_model_type = OdomModel::kAckermann;
+  c.amcl_motion_conventions = false;
+  c.alpha1 = 1e-5;
+  c.alpha2 = 0.00201878;
+  c.alpha3 = 0.03;
+  c.alpha4 = 0.04;
+  c.alpha5 = 0.05;
+  c.wheelbase = 1.2;
+  c.adaptive_motion_noise = false;
+  c.laser_model_type = LaserModel::kBeam;
+  c.likelihood_combination = LikelihoodCombination::kAmclCubedSum;
+  c.max_beams = 90;
+  c.laser_min_range = 0.15;
+  c.laser_max_range = 12.0;
+  c.z_hit = 0.8;
+  c.z_short = 0.02;
+  c.z_max = 0.03;
+  c.z_rand = 0.15;
+  c.sigma_hit = 0.0530479;
+  c.lambda_short = 0.4;
+  c.laser_likelihood_max_dist = 1.5;
+  c.likelihood_tempering = 0.0;  // the default: tracking_tempering needs the adaptive search
+  c.tracking_tempering = 0.162786;
+  c.tempering_ess_fraction = 0.2;
+  c.unknown_cells_block_rays = false;
+  c.ray_casting = RayCasting::kTable;
+  c.range_table_angles = 256;
+  c.range_table_budget_mb = 64.0;
+  c.unmapped_obstacle_filter = false;
+  c.threads = 2;
+  c.seed = 18446744073709551615ULL;
+  c.grain = 1024;
+  return c;
+}
+
+TEST(ConfigYaml, WritesEveryFieldSoThatParseConfigReadsItBack) {
+  const LocalizerConfig c = every_field_changed();
+  const std::string yaml = config_yaml(c);
+  const LoadedConfig back = parse_config(yaml, "written.yaml");
+  EXPECT_TRUE(back.warnings.empty());
+  EXPECT_TRUE(back.config == c) << yaml;
+  EXPECT_DOUBLE_EQ(back.config.kld_bin_theta, 0.1 + 0.2);
+  EXPECT_EQ(back.config.seed, c.seed);
+  EXPECT_THAT(yaml, HasSubstr("odom_model_type: ackermann\n"));
+  EXPECT_THAT(yaml, HasSubstr("laser_model_type: beam\n"));
+  // Aliases are not written beside the keys they stand for.
+  EXPECT_THAT(yaml, Not(HasSubstr("robot_model_type")));
+  EXPECT_THAT(yaml, Not(HasSubstr("selective_resampling")));
+}
+
+TEST(ConfigYaml, WritesOnlyWhatDiffersFromTheBase) {
+  EXPECT_EQ(config_yaml(LocalizerConfig{}), "");
+  LocalizerConfig c;
+  c.wheelbase = 1.2;
+  c.max_beams = 90;
+  EXPECT_EQ(config_yaml(c), "wheelbase: 1.2\nmax_beams: 90\n");
+  // Against nav2's defaults, the text holds what mote's defaults change, and read over nav2's
+  // values (`defaults: nav2`) gives mote's defaults back.
+  const std::string over_nav2 = config_yaml(LocalizerConfig{}, nav2_defaults());
+  EXPECT_THAT(over_nav2, HasSubstr("max_particles: 500000\n"));
+  EXPECT_TRUE(parse_config("defaults: nav2\n" + over_nav2, "n.yaml").config == LocalizerConfig{});
 }
 
 }  // namespace

@@ -155,6 +155,8 @@ struct LocalizerConfig {
 
   /// Throws ConfigError naming the first parameter out of its valid range.
   void validate() const;
+
+  friend bool operator==(const LocalizerConfig&, const LocalizerConfig&) = default;
 };
 
 /// nav2_amcl's defaults (the values amcl users compare against): 500-2000 particles, the
@@ -177,5 +179,12 @@ struct LoadedConfig {
 
 /// As load_config, from YAML text; `name` stands for the file in messages.
 [[nodiscard]] LoadedConfig parse_config(const std::string& yaml_text, const std::string& name);
+
+/// The flat YAML (one `key: value` line per field, load_config's names) of every field of
+/// `config` that differs from `base`: parse_config of the text over `base`'s values gives
+/// `config` back exactly (doubles are written to round-trip). With the default base the text
+/// is a complete flat file for mote's defaults.
+[[nodiscard]] std::string config_yaml(const LocalizerConfig& config,
+                                      const LocalizerConfig& base = {});
 
 }  // namespace mote
