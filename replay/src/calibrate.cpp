@@ -191,29 +191,53 @@ Samples collect(const OccupancyGrid& map, const RayCaster& caster, const Distanc
   return s;
 }
 
-// Relative change of a scale parameter, absolute change of a weight. Alphas below 1e-3 count as
-// 1e-3: a term that small is no noise worth the name, and one near its lower bound (1e-5) would
-// otherwise "change" by a factor of five between rounds.
-void compare(double a, double b, bool weight, const char* name, CalibrationRound& r) {
-  const double change = weight ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(b), 1e-3);
+// How far the noise the alphas predict moved: the mean, over the round's increments, of the
+// larger relative change of the predicted standard deviations of rot1 and of the translation
+// (table 5.6, lines 5-6). Not alpha by alpha: where a log's turns come with translation, alpha1
+// and alpha2 (alpha3 and alpha4) trade off (Intel: alpha1 jumps between 1e-5 and 0.0055 from
+// one round to the next while alpha2 takes up the difference).
+double noise_change(const OdometryAlphas& a, const OdometryAlphas& b,
+                    const std::vector<MotionResidual>& increments) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const MotionResidual& m : increments) {
+    const double rot1 = m.rot1 * m.rot1, trans = m.trans * m.trans;
+    const double turns = rot1 + m.rot2 * m.rot2;
+    const double rot_b = b.alpha1 * rot1 + b.alpha2 * trans;
+    const double trans_b = b.alpha3 * trans + b.alpha4 * turns;
+    if (rot_b <= 0.0 || trans_b <= 0.0) continue;
+    const double rot_a = a.alpha1 * rot1 + a.alpha2 * trans;
+    const double trans_a = a.alpha3 * trans + a.alpha4 * turns;
+    sum += std::max(std::abs(std::sqrt(rot_a / rot_b) - 1.0),
+                    std::abs(std::sqrt(trans_a / trans_b) - 1.0));
+    ++n;
+  }
+  return n == 0 ? 0.0 : sum / static_cast<double>(n);
+}
+
+void note_change(double change, const char* name, CalibrationRound& r) {
   if (change > r.largest_change) {
     r.largest_change = change;
     r.largest_change_of = name;
   }
 }
 
-void measure_change(CalibrationRound& r, const CalibrationRound& prev) {
+// Relative change of a scale parameter, absolute change of a weight. Ackermann's alphas below
+// 1e-3 count as 1e-3: a term that small is no noise worth the name, and one near its lower
+// bound (1e-5) would otherwise "change" by a factor of five between rounds.
+void compare(double a, double b, bool weight, const char* name, CalibrationRound& r) {
+  note_change(weight ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(b), 1e-3), name, r);
+}
+
+void measure_change(CalibrationRound& r, const CalibrationRound& prev,
+                    const std::vector<MotionResidual>& increments) {
   compare(r.field.params.sigma_hit, prev.field.params.sigma_hit, false, "sigma_hit", r);
   compare(r.field.params.z_hit, prev.field.params.z_hit, true, "z_hit", r);
   compare(r.beam.params.sigma_hit, prev.beam.params.sigma_hit, false, "beam sigma_hit", r);
   compare(r.beam.params.z_hit, prev.beam.params.z_hit, true, "beam z_hit", r);
   compare(r.correlation.tempering, prev.correlation.tempering, false, "tracking_tempering", r);
-  const OdometryAlphas& a = r.odometry.alphas_zero_mean;
-  const OdometryAlphas& b = prev.odometry.alphas_zero_mean;
-  compare(a.alpha1, b.alpha1, false, "alpha1", r);
-  compare(a.alpha2, b.alpha2, false, "alpha2", r);
-  compare(a.alpha3, b.alpha3, false, "alpha3", r);
-  compare(a.alpha4, b.alpha4, false, "alpha4", r);
+  note_change(noise_change(r.odometry.alphas_zero_mean, prev.odometry.alphas_zero_mean, increments),
+              "odometry noise (alpha1-alpha4)", r);
   if (r.ackermann && prev.ackermann) {
     compare(r.ackermann->alpha_steering, prev.ackermann->alpha_steering, false, "Ackermann alpha1",
             r);
@@ -241,6 +265,8 @@ LocalizerConfig apply_fit(LocalizerConfig c, const CalibrationRound& r) {
     c.sigma_hit = std::max(r.field.params.sigma_hit, b.sigma_hit);
   }
   c.tracking_tempering = r.correlation.tempering;
+  c.likelihood_tempering =
+      0.0;  // the adaptive search, which tracking_tempering replaces once settled
   const OdometryAlphas& a =
       c.odom_model_type == OdomModel::kOmni ? r.odometry.alphas_omni : r.odometry.alphas_zero_mean;
   c.alpha1 = a.alpha1;
@@ -303,6 +329,7 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
   result.with_reference = !options.reference.empty();
   result.scans = frames.size();
   result.config = options.config;
+  result.start = options.config;
   const int rounds = result.with_reference ? 1 : std::max(1, options.max_rounds);
   for (int round = 0; round < rounds; ++round) {
     std::vector<PosedFrame> posed;
@@ -324,12 +351,12 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
     if (options.config.odom_model_type == OdomModel::kAckermann) {
       r.ackermann = fit_ackermann_noise(s.motion, options.config.wheelbase, !result.with_reference);
     }
-    if (!result.rounds.empty()) measure_change(r, result.rounds.back());
+    result.samples.motion.clear();
+    for (const MotionSample& m : s.motion) result.samples.motion.push_back(motion_residual(m));
+    if (!result.rounds.empty()) measure_change(r, result.rounds.back(), result.samples.motion);
     result.config = apply_fit(options.config, r);
     result.rounds.push_back(r);
     result.samples.beams = std::move(s.beams);
-    result.samples.motion.clear();
-    for (const MotionSample& m : s.motion) result.samples.motion.push_back(motion_residual(m));
     if (round > 0 && result.rounds.back().largest_change < options.settle) {
       result.settled = true;
       break;

@@ -79,6 +79,11 @@ void sensor_section(std::ostringstream& y, const CalibrationResult& r, const Cal
        "information (sec. 6.3.4), the exponent below, used once the belief has settled\n"
        "# (global localization keeps the adaptive search).\n"
     << "tracking_tempering: " << num(c.tracking_tempering) << "\n";
+  if (r.start.likelihood_tempering > 0.0) {
+    y << "# The starting config's fixed likelihood_tempering (" << num(r.start.likelihood_tempering)
+      << ") is dropped: tracking_tempering replaces the\n# adaptive search "
+         "(likelihood_tempering: 0), which a fixed exponent leaves no room for.\n";
+  }
 }
 
 void motion_section(std::ostringstream& y, const CalibrationResult& r, const CalibrationRound& f) {
@@ -119,10 +124,40 @@ void motion_section(std::ostringstream& y, const CalibrationResult& r, const Cal
     << ", alpha2 " << num(o.alphas_omni.alpha2) << ", alpha3 " << num(o.alphas_omni.alpha3)
     << ", alpha4 " << num(o.alphas_omni.alpha4) << ", alpha5 " << num(o.alpha5) << "\n"
     << "alpha5: " << num(c.odom_model_type == OdomModel::kOmni ? c.alpha5 : o.alpha5) << "\n"
-    << "# The online estimate (odometry_noise.hpp) starts from the fit and keeps its margin over\n"
-       "# it (Intel: the fitted alphas held fixed lose track, adapted from them the filter "
-       "tracks).\n"
+    << (c.adaptive_motion_noise
+            ? "# The online estimate (odometry_noise.hpp) starts from the fit and keeps its margin "
+              "over\n# it (Intel: the fitted alphas held fixed lose track, adapted from them the "
+              "filter tracks).\n"
+            : "# The online estimate (odometry_noise.hpp) is the differential model's only: this "
+              "model\n# samples with the fitted alphas as they are.\n")
     << "adaptive_motion_noise: " << (c.adaptive_motion_noise ? "true" : "false") << "\n";
+}
+
+// What the fit does not set, as the starting config held it: the written file stands alone.
+void unfitted_section(std::ostringstream& y, const CalibrationResult& r) {
+  const LocalizerConfig defaults;
+  LocalizerConfig rest = r.config;
+  rest.laser_model_type = defaults.laser_model_type;
+  rest.z_hit = defaults.z_hit;
+  rest.z_rand = defaults.z_rand;
+  rest.sigma_hit = defaults.sigma_hit;
+  rest.z_short = defaults.z_short;
+  rest.z_max = defaults.z_max;
+  rest.lambda_short = defaults.lambda_short;
+  rest.likelihood_tempering = defaults.likelihood_tempering;
+  rest.tracking_tempering = defaults.tracking_tempering;
+  rest.odom_model_type = defaults.odom_model_type;
+  rest.alpha1 = defaults.alpha1;
+  rest.alpha2 = defaults.alpha2;
+  rest.alpha3 = defaults.alpha3;
+  rest.alpha4 = defaults.alpha4;
+  rest.alpha5 = defaults.alpha5;
+  rest.adaptive_motion_noise = defaults.adaptive_motion_noise;
+  const std::string kept = config_yaml(rest, defaults);
+  if (kept.empty()) return;
+  y << "\n# Not fitted: the starting config's (--config) other values that differ from mote's\n"
+       "# defaults, so that this file alone reproduces the calibrated filter.\n"
+    << kept;
 }
 
 }  // namespace
@@ -144,6 +179,7 @@ std::string calibration_yaml(const CalibrationResult& r) {
   y << "# Load with mote replay --config or mote::load_config.\n\n";
   sensor_section(y, r, f);
   motion_section(y, r, f);
+  unfitted_section(y, r);
   return y.str();
 }
 

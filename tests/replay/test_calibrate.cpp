@@ -165,8 +165,15 @@ TEST(CalibrateSimulated, RecoversSensorParametersWithoutReference) {
   }
 }
 
-TEST(CalibrateSimulated, ConfigLoadsAndCarriesTheFit) {
+// The written file alone reproduces the calibrated filter: the fit, and the starting config's
+// values the fit does not set. A fixed likelihood_tempering gives way to the fitted tracking
+// exponent (validate() refuses the two together).
+TEST(CalibrateSimulated, ConfigLoadsAndCarriesTheFitAndTheStartingConfig) {
   CalibrationOptions o = simulated(kSettings[0], test::temp_dir());
+  o.config.max_beams = 48;
+  o.config.unmapped_obstacle_filter = false;
+  o.config.update_min_d = 0.15;
+  o.config.likelihood_tempering = 0.5;
   const CalibrationResult r = calibrate(o);
   const std::filesystem::path yaml = write_calibration(r, test::temp_dir() / "out");
   const LoadedConfig loaded = load_config(yaml);
@@ -174,8 +181,15 @@ TEST(CalibrateSimulated, ConfigLoadsAndCarriesTheFit) {
   EXPECT_NEAR(loaded.config.z_hit, r.config.z_hit, 1e-5);
   EXPECT_NEAR(loaded.config.sigma_hit, r.config.sigma_hit, 1e-5 * r.config.sigma_hit);
   EXPECT_NEAR(loaded.config.alpha3, r.config.alpha3, 1e-5 * r.config.alpha3);
+  EXPECT_NEAR(loaded.config.tracking_tempering, r.config.tracking_tempering, 1e-5);
+  EXPECT_EQ(loaded.config.max_beams, 48);
+  EXPECT_FALSE(loaded.config.unmapped_obstacle_filter);
+  EXPECT_DOUBLE_EQ(loaded.config.update_min_d, 0.15);
+  EXPECT_DOUBLE_EQ(loaded.config.likelihood_tempering, 0.0);
+  const std::string text = test::read_bytes(yaml);
+  EXPECT_NE(text.find("fixed likelihood_tempering (0.5) is dropped"), std::string::npos);
   EXPECT_TRUE(std::filesystem::file_size(yaml.parent_path() / "calibration.png") > 1000);
-  EXPECT_NE(test::read_bytes(yaml).find("log-likelihood"), std::string::npos);
+  EXPECT_NE(text.find("log-likelihood"), std::string::npos);
 }
 
 /// With an Ackermann config the config carries the Ackermann fit in the model's alphas (alpha1
@@ -184,6 +198,7 @@ TEST(CalibrateSimulated, ConfigLoadsAndCarriesTheFit) {
 TEST(CalibrateSimulated, AckermannConfigCarriesTheArcFit) {
   CalibrationOptions o = simulated(kSettings[0], test::temp_dir());
   o.config.odom_model_type = OdomModel::kAckermann;
+  o.config.wheelbase = 0.8;
   const CalibrationResult r = calibrate(o);
   const CalibrationRound& f = r.rounds.back();
   ASSERT_TRUE(f.ackermann.has_value());
@@ -192,6 +207,7 @@ TEST(CalibrateSimulated, AckermannConfigCarriesTheArcFit) {
   const std::filesystem::path yaml = write_calibration(r, test::temp_dir() / "ackermann");
   const LoadedConfig loaded = load_config(yaml);
   EXPECT_EQ(loaded.config.odom_model_type, OdomModel::kAckermann);
+  EXPECT_DOUBLE_EQ(loaded.config.wheelbase, o.config.wheelbase);  // the fit's geometry
   EXPECT_NEAR(loaded.config.alpha1, f.ackermann->alpha_steering, 1e-5 * loaded.config.alpha1);
   EXPECT_NEAR(loaded.config.alpha3, f.ackermann->alpha_distance, 1e-5 * loaded.config.alpha3);
   EXPECT_NE(test::read_bytes(yaml).find("Ackermann (bicycle"), std::string::npos);

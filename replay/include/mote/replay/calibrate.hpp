@@ -196,7 +196,9 @@ struct CalibrationOptions {
   ReaderOptions reader;
   int beams_per_scan = 90;  ///< beams per scan the sensor fits use, evenly spaced
   /// Self-calibration rounds at most. Each round localizes with the previous round's fit; the
-  /// rounds stop once no parameter moves by more than `settle` (relative, weights absolute).
+  /// rounds stop once no parameter moves by more than `settle` (relative, weights absolute, the
+  /// odometry alphas by the mean relative change of the noise they predict for the log's
+  /// increments).
   int max_rounds = 3;
   double settle = 0.1;
   std::size_t min_scans = 50;  ///< fewer scans with motion is "log too short"
@@ -224,6 +226,7 @@ struct CalibrationSamples {
 
 struct CalibrationResult {
   LocalizerConfig config;  ///< the starting config with every fitted value in
+  LocalizerConfig start;   ///< the starting config (CalibrationOptions::config)
   bool with_reference = false;
   std::size_t scans = 0;  ///< scans in the log
   std::vector<CalibrationRound> rounds;
