@@ -192,27 +192,27 @@ Samples collect(const OccupancyGrid& map, const RayCaster& caster, const Distanc
 }
 
 // How far the noise the alphas predict moved: the mean, over the round's increments, of the
-// larger relative change of the predicted standard deviations of rot1 and of the translation
-// (table 5.6, lines 5-6). Not alpha by alpha: where a log's turns come with translation, alpha1
-// and alpha2 (alpha3 and alpha4) trade off (Intel: alpha1 jumps between 1e-5 and 0.0055 from
-// one round to the next while alpha2 takes up the difference).
+// larger relative change of the predicted standard deviations of the heading (rot1 + rot2:
+// alpha1 (rot1^2 + rot2^2) + 2 alpha2 trans^2) and of the translation (alpha3 trans^2 + alpha4
+// (rot1^2 + rot2^2); table 5.6, lines 5-7, as odometry_noise.hpp reads them). Not alpha by
+// alpha: where a log's turns come with translation, alpha1 and alpha2 (alpha3 and alpha4) trade
+// off (Intel: alpha1 jumps between 1e-5 and 0.0055 from one round to the next while alpha2
+// takes up the difference).
 double noise_change(const OdometryAlphas& a, const OdometryAlphas& b,
                     const std::vector<MotionResidual>& increments) {
+  const auto sd_change = [](double now, double before) {
+    return before > 0.0 ? std::abs(std::sqrt(now / before) - 1.0) : 0.0;
+  };
   double sum = 0.0;
-  std::size_t n = 0;
   for (const MotionResidual& m : increments) {
-    const double rot1 = m.rot1 * m.rot1, trans = m.trans * m.trans;
-    const double turns = rot1 + m.rot2 * m.rot2;
-    const double rot_b = b.alpha1 * rot1 + b.alpha2 * trans;
-    const double trans_b = b.alpha3 * trans + b.alpha4 * turns;
-    if (rot_b <= 0.0 || trans_b <= 0.0) continue;
-    const double rot_a = a.alpha1 * rot1 + a.alpha2 * trans;
-    const double trans_a = a.alpha3 * trans + a.alpha4 * turns;
-    sum += std::max(std::abs(std::sqrt(rot_a / rot_b) - 1.0),
-                    std::abs(std::sqrt(trans_a / trans_b) - 1.0));
-    ++n;
+    const double turns = m.rot1 * m.rot1 + m.rot2 * m.rot2, trans = m.trans * m.trans;
+    const double heading = sd_change(a.alpha1 * turns + 2.0 * a.alpha2 * trans,
+                                     b.alpha1 * turns + 2.0 * b.alpha2 * trans);
+    const double along =
+        sd_change(a.alpha3 * trans + a.alpha4 * turns, b.alpha3 * trans + b.alpha4 * turns);
+    sum += std::max(heading, along);
   }
-  return n == 0 ? 0.0 : sum / static_cast<double>(n);
+  return increments.empty() ? 0.0 : sum / static_cast<double>(increments.size());
 }
 
 void note_change(double change, const char* name, CalibrationRound& r) {
