@@ -134,6 +134,7 @@ const std::vector<Key>& keys() {
         field<double>("alpha5", kNum, &LocalizerConfig::alpha5),
         field<double>("wheelbase", kNum, &LocalizerConfig::wheelbase),
         field<bool>("adaptive_motion_noise", kBool, &LocalizerConfig::adaptive_motion_noise),
+        field<double>("motion_noise_margin", kNum, &LocalizerConfig::motion_noise_margin),
         field<bool>("unmapped_obstacle_filter", kBool, &LocalizerConfig::unmapped_obstacle_filter),
         field<int>("max_beams", kInt, &LocalizerConfig::max_beams),
         field<double>("laser_min_range", kNum, &LocalizerConfig::laser_min_range),

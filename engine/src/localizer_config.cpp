@@ -63,6 +63,8 @@ void validate_motion(const LocalizerConfig& c) {
   require(finite_at_least(c.alpha4, 0.0), "alpha4", "a value >= 0");
   require(finite_at_least(c.alpha5, 0.0), "alpha5", "a value >= 0");
   require(finite_positive(c.wheelbase), "wheelbase", "a positive length in metres");
+  require(finite_positive(c.motion_noise_margin), "motion_noise_margin",
+          "a positive variance factor");
 }
 
 void validate_sensor(const LocalizerConfig& c) {

@@ -86,6 +86,7 @@ Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
                 .alpha_fast = config.recovery_alpha_fast,
                 .band = config.recovery_fit_band}),
       fit(map, mixture_of(config), config.laser_likelihood_max_dist),
+      odometry_noise(OdometryNoiseConfig{.safety = config.motion_noise_margin}),
       summarize(ClusterConfig{.bin_x = config.kld_bin_xy,
                               .bin_y = config.kld_bin_xy,
                               .bin_theta = config.kld_bin_theta}) {

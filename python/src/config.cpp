@@ -40,6 +40,7 @@ namespace {
   X(alpha5) \
   X(wheelbase) \
   X(adaptive_motion_noise) \
+  X(motion_noise_margin) \
   X(laser_model_type) \
   X(likelihood_combination) \
   X(max_beams) \

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -156,6 +158,28 @@ double effective_range_max(const ScanFrame& f, const LocalizerConfig& c) {
   return c.laser_max_range > 0 ? std::min(r, c.laser_max_range) : r;
 }
 
+// The distance from a reading's endpoint to the nearest occupied cell, clamped at max_d (the
+// filter's laser_likelihood_max_dist), max_d off the map.
+double endpoint_distance(const OccupancyGrid& map, const DistanceField& field, const Pose2& sensor,
+                         double angle, double z, double max_d) {
+  const Point2 end{sensor.x + z * std::cos(angle), sensor.y + z * std::sin(angle)};
+  const CellIndex c = map.world_to_cell(end);
+  const bool inside = c.i >= 0 && c.j >= 0 && c.i < map.width() && c.j < map.height();
+  return inside ? std::min<double>(field.at(c), max_d) : max_d;
+}
+
+// The readings the sensor fits use: every `step`-th, those the filter would drop left out.
+template <class Visit>
+void for_fit_beams(const LaserScan& scan, int beams_per_scan, Visit visit) {
+  const std::size_t n = scan.ranges.size();
+  const auto step = std::max<std::size_t>(1, n / static_cast<std::size_t>(beams_per_scan));
+  for (std::size_t b = step / 2; b < n; b += step) {
+    const double z = scan.ranges[b];
+    if (!(z >= scan.range_min) || std::isnan(z)) continue;  // as the filter drops them
+    visit(b, z);
+  }
+}
+
 Samples collect(const OccupancyGrid& map, const RayCaster& caster, const DistanceField& field,
                 const std::vector<ScanFrame>& frames, const std::vector<PosedFrame>& posed,
                 const CalibrationOptions& o, double range_max) {
@@ -172,23 +196,47 @@ Samples collect(const OccupancyGrid& map, const RayCaster& caster, const Distanc
     }
     const Pose2 sensor = compose(posed[p].pose, f.scan.sensor_pose);
     collect_filter_beams(caster, f.scan, sensor, p, o.config, range_max, s.filter_beams);
-    const std::size_t n = f.scan.ranges.size();
-    const auto step = std::max<std::size_t>(1, n / static_cast<std::size_t>(o.beams_per_scan));
-    for (std::size_t b = step / 2; b < n; b += step) {
-      const double z = f.scan.ranges[b];
-      if (!(z >= f.scan.range_min) || std::isnan(z)) continue;  // as the filter drops them
+    for_fit_beams(f.scan, o.beams_per_scan, [&](std::size_t b, double z) {
       const double angle = sensor.theta + f.scan.beam_angle(b);
       const double expected =
           caster.cast_one({sensor.x, sensor.y}, angle, static_cast<float>(range_max));
       s.beams.push_back({std::min(z, range_max), std::min(expected, range_max)});
-      if (z >= range_max) continue;
-      const Point2 end{sensor.x + z * std::cos(angle), sensor.y + z * std::sin(angle)};
-      const CellIndex c = map.world_to_cell(end);
-      const bool inside = c.i >= 0 && c.j >= 0 && c.i < map.width() && c.j < map.height();
-      s.distances.push_back(inside ? std::min<double>(field.at(c), max_d) : max_d);
-    }
+      if (z < range_max)
+        s.distances.push_back(endpoint_distance(map, field, sensor, angle, z, max_d));
+    });
   }
   return s;
+}
+
+// MarginTrial's score: the mean over the poses of the per-beam mean log-density of the
+// endpoints under the fitted field, z_hit N(d; 0, sigma^2) + z_rand / range_max (table 6.3).
+MarginTrial endpoint_fit(const OccupancyGrid& map, const DistanceField& field,
+                         const std::vector<ScanFrame>& frames, const std::vector<PosedFrame>& posed,
+                         const CalibrationOptions& o, double range_max, const FieldMixture& m) {
+  const double max_d = o.config.laser_likelihood_max_dist;
+  const double norm = m.z_hit / (std::sqrt(2.0 * std::numbers::pi) * m.sigma_hit);
+  double sum = 0.0;
+  std::size_t scored = 0;
+  for (const PosedFrame& p : posed) {
+    const ScanFrame& f = frames[p.frame];
+    const Pose2 sensor = compose(p.pose, f.scan.sensor_pose);
+    double scan_sum = 0.0;
+    std::size_t beams = 0;
+    for_fit_beams(f.scan, o.beams_per_scan, [&](std::size_t b, double z) {
+      if (z >= range_max) return;
+      const double d =
+          endpoint_distance(map, field, sensor, sensor.theta + f.scan.beam_angle(b), z, max_d);
+      scan_sum += std::log(norm * std::exp(-0.5 * d * d / (m.sigma_hit * m.sigma_hit)) +
+                           m.z_rand / range_max);
+      ++beams;
+    });
+    if (beams == 0) continue;
+    sum += scan_sum / static_cast<double>(beams);
+    ++scored;
+  }
+  const double mean =
+      scored == 0 ? -std::numeric_limits<double>::infinity() : sum / static_cast<double>(scored);
+  return {.margin = 0, .fit = mean, .poses = scored};
 }
 
 // How far the noise the alphas predict moved: the mean, over the round's increments, of the
@@ -311,6 +359,46 @@ void refine(std::vector<PosedFrame>& posed, const std::vector<ScanFrame>& frames
   }
 }
 
+// A tracking run from `start` (its frame and pose) to the end of the log; the estimate at
+// every update.
+std::vector<PosedFrame> track(const OccupancyGrid& map, const std::vector<ScanFrame>& frames,
+                              const CalibrationOptions& o, const LocalizerConfig& config,
+                              const PosedFrame& start, int run) {
+  constexpr double kSigmaXy = 0.1;      // m
+  constexpr double kSigmaTheta = 0.05;  // rad
+  Localizer filter(map, config);
+  filter.initialize(start.pose, Eigen::Vector3d(kSigmaXy * kSigmaXy, kSigmaXy * kSigmaXy,
+                                                kSigmaTheta * kSigmaTheta)
+                                    .asDiagonal());
+  std::vector<PosedFrame> posed;
+  for (std::size_t k = start.frame; k < frames.size(); ++k) {
+    filter.update(frames[k].odometry, frames[k].scan);
+    if (o.progress) o.progress(run, k + 1, frames.size());
+    if (filter.last_update().ran()) posed.push_back({k, filter.estimate().best().mean, true, {}});
+  }
+  return posed;
+}
+
+// The online noise's margin by the scans' fit at the estimates (MarginTrial), each trial a
+// tracking run with the final config from `start`.
+void choose_margin(const OccupancyGrid& map, const DistanceField& field,
+                   const std::vector<ScanFrame>& frames, const CalibrationOptions& o,
+                   double range_max, const PosedFrame& start, CalibrationResult& result) {
+  const CalibrationRound& last = result.rounds.back();
+  const FieldMixture scoring{last.field.params.z_hit, last.field.params.z_rand,
+                             std::max(last.field.params.sigma_hit, last.beam.params.sigma_hit)};
+  int run = static_cast<int>(result.rounds.size());
+  const MarginScorer score = [&](double margin) {
+    LocalizerConfig c = result.config;
+    c.motion_noise_margin = margin;
+    if (o.particles > 0) c.min_particles = c.max_particles = o.particles;
+    const std::vector<PosedFrame> posed = track(map, frames, o, c, start, run++);
+    return endpoint_fit(map, field, frames, posed, o, range_max, scoring);
+  };
+  result.margins = search_margin(score, std::clamp(o.config.motion_noise_margin, 1.0, 64.0));
+  result.config.motion_noise_margin = best_margin(result.margins).margin;
+}
+
 }  // namespace
 
 CalibrationResult calibrate(const CalibrationOptions& options) {
@@ -331,6 +419,7 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
   result.config = options.config;
   result.start = options.config;
   const int rounds = result.with_reference ? 1 : std::max(1, options.max_rounds);
+  PosedFrame track_start;  // the last round's first pose: where the margin trials start
   for (int round = 0; round < rounds; ++round) {
     std::vector<PosedFrame> posed;
     if (result.with_reference) {
@@ -341,6 +430,7 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
              result.rounds.empty() ? BeamMixture{} : result.rounds.back().beam.params, options,
              range_max);
     }
+    track_start = posed.front();
     Samples s = collect(map, caster, field, frames, posed, options, range_max);
     CalibrationRound r;
     r.poses = posed.size();
@@ -361,6 +451,9 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
       result.settled = true;
       break;
     }
+  }
+  if (result.config.adaptive_motion_noise && result.config.odom_model_type == OdomModel::kDiff) {
+    choose_margin(map, field, frames, options, range_max, track_start, result);
   }
   result.samples.range_max = range_max;
   result.wall_s = std::chrono::duration<double>(Clock::now() - start).count();

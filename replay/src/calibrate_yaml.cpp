@@ -131,6 +131,13 @@ void motion_section(std::ostringstream& y, const CalibrationResult& r, const Cal
             : "# The online estimate (odometry_noise.hpp) is the differential model's only: this "
               "model\n# samples with the fitted alphas as they are.\n")
     << "adaptive_motion_noise: " << (c.adaptive_motion_noise ? "true" : "false") << "\n";
+  if (r.margins.empty()) return;
+  y << "# The online estimate's variance margin, chosen by how well the scans fit the map at the\n"
+       "# filter's estimates (mean per-beam log-density, nats), one run per margin:\n#";
+  for (const MarginTrial& t : r.margins) {
+    y << " " << num(t.margin) << ": " << num(t.fit);
+  }
+  y << "\nmotion_noise_margin: " << num(c.motion_noise_margin) << "\n";
 }
 
 // What the fit does not set, as the starting config held it: the written file stands alone.
@@ -153,6 +160,7 @@ void unfitted_section(std::ostringstream& y, const CalibrationResult& r) {
   rest.alpha4 = defaults.alpha4;
   rest.alpha5 = defaults.alpha5;
   rest.adaptive_motion_noise = defaults.adaptive_motion_noise;
+  if (!r.margins.empty()) rest.motion_noise_margin = defaults.motion_noise_margin;
   const std::string kept = config_yaml(rest, defaults);
   if (kept.empty()) return;
   y << "\n# Not fitted: the starting config's (--config) other values that differ from mote's\n"

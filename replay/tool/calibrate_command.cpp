@@ -14,7 +14,7 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 10> kFlags{{
+constexpr std::array<FlagSpec, 11> kFlags{{
     {"map", "MAP.yaml", "map_server map (required)"},
     {"log", "LOG", "recorded log (CARMEN, ROS 1 bag, ROS 2), as mote replay reads it (required)"},
     {"out", "DIR",
@@ -27,6 +27,9 @@ constexpr std::array<FlagSpec, 10> kFlags{{
     {"rounds", "N", "self-calibration rounds at most (default 3)"},
     {"beams", "N", "beams per scan the sensor fits use (default 90)"},
     {"threads", "N", "worker threads, 0 = every core (default 0)"},
+    {"particles", "N",
+     "particles (min = max) of the tracking runs that choose motion_noise_margin; default: the "
+     "config's KLD bounds. Pass the count you will run"},
     {"laser-max-range", "M", "m, the no-return reading of CARMEN FLASER logs (default: inferred)"},
 }};
 
@@ -37,7 +40,9 @@ constexpr std::string_view kAbout =
     "z_hit/z_rand/sigma_hit (maximum likelihood) and the odometry alphas (maximum likelihood,\n"
     "section 5.4) and writes DIR/config.yaml (for mote replay --config) and DIR/calibration.png.\n"
     "Without --reference the filter's own trajectory is the reference: localize, fit, localize\n"
-    "again with the fit, until no parameter moves by more than 10% (at most 3 rounds).";
+    "again with the fit, until no parameter moves by more than 10% (at most 3 rounds). Then\n"
+    "chooses the online odometry noise's margin (motion_noise_margin) by tracking runs scored by\n"
+    "how well the scans fit the map at the estimates.";
 
 replay::CalibrationProgress progress_bar() {
   if (isatty(STDERR_FILENO) == 0) return {};
@@ -75,6 +80,7 @@ replay::CalibrationOptions options_from(const ParsedArgs& args) {
   if (auto n = args.integer("rounds", 1, 50)) o.max_rounds = static_cast<int>(*n);
   if (auto n = args.integer("beams", 1, 100'000)) o.beams_per_scan = static_cast<int>(*n);
   if (auto n = args.integer("threads", 0, 4096)) o.config.threads = static_cast<int>(*n);
+  if (auto n = args.integer("particles", 1, 100'000'000)) o.particles = static_cast<int>(*n);
   if (auto m = args.real("laser-max-range", 0.01, 1e6)) {
     o.reader.carmen_max_range = static_cast<float>(*m);
     o.config.laser_max_range = *m;
@@ -120,6 +126,12 @@ void print_summary(const replay::CalibrationResult& r, const std::filesystem::pa
       "%.3f)\n",
       a.alpha1, a.alpha2, a.alpha3, a.alpha4, f.odometry.translation_bias,
       f.odometry.rotation_bias);
+  if (!r.margins.empty()) {
+    std::printf("  noise margin  %.3g (scan fit at the estimates, nats:",
+                r.config.motion_noise_margin);
+    for (const replay::MarginTrial& t : r.margins) std::printf(" %.3g: %.4f", t.margin, t.fit);
+    std::printf(")\n");
+  }
   if (f.ackermann) {
     std::printf("  ackermann     alpha1 (steering) %.4g  alpha3 (distance) %.4g, %zu arcs\n",
                 f.ackermann->alpha_steering, f.ackermann->alpha_distance,

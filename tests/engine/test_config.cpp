@@ -154,6 +154,7 @@ TEST(ParseConfig, DefaultsKeyChoosesTheBase) {
   expect_input_error("defaults: ros\n", "expected mote or nav2");
   expect_input_error("likelihood_tempering: 2\n", "likelihood_tempering");
   expect_input_error("tracking_tempering: -0.1\n", "tracking_tempering");
+  expect_input_error("motion_noise_margin: 0\n", "motion_noise_margin");
   // A fixed exponent has no adaptive search for tracking_tempering to replace.
   expect_input_error("likelihood_tempering: 0.3\ntracking_tempering: 0.2\n",
                      "0 when likelihood_tempering fixes the exponent");
@@ -257,6 +258,7 @@ LocalizerConfig every_field_changed() {
   c.alpha5 = 0.05;
   c.wheelbase = 1.2;
   c.adaptive_motion_noise = false;
+  c.motion_noise_margin = 11.3137;
   c.laser_model_type = LaserModel::kBeam;
   c.likelihood_combination = LikelihoodCombination::kAmclCubedSum;
   c.max_beams = 90;

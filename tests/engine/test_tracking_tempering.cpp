@@ -103,5 +103,38 @@ TEST(LogEvidence, IsHigherForAPriorAroundTheTruth) {
   EXPECT_GT(at_truth, off + 10.0) << at_truth << " " << off;
 }
 
+// motion_noise_margin is the online odometry-noise fit's variance factor: with odometry that
+// under-reports every step by 10%, the adapted alphas grow with it.
+TEST(MotionNoiseMargin, ScalesTheAdaptedAlphas) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const OccupancyGrid map = load_map(yaml);
+  const auto adapted = [&](double margin) {
+    LocalizerConfig c;
+    c.min_particles = c.max_particles = 1000;
+    c.update_min_d = c.update_min_a = 0.0;
+    c.motion_noise_margin = margin;
+    Localizer localizer(map, c);
+    localizer.initialize(kStart,
+                         Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 4 * kDeg * kDeg).asDiagonal());
+    test::ScanSimulator sim(map, 11);
+    Pose2 truth = kStart;
+    Pose2 odometry = kStart;
+    for (int k = 0; k < 40; ++k) {
+      EXPECT_TRUE(localizer.update(odometry, sim.scan_at(truth)));
+      const Pose2 next = sim.drive(truth, 0.2);
+      const Pose2 step = between(truth, next);
+      odometry = compose(odometry, {0.9 * step.x, 0.9 * step.y, 0.9 * step.theta});
+      truth = next;
+    }
+    const OdometryAlphas a = localizer.last_update().alphas;
+    return a.alpha1 + a.alpha2 + a.alpha3 + a.alpha4;
+  };
+  const double at4 = adapted(4.0);
+  const double at8 = adapted(8.0);
+  EXPECT_GT(at4, 4 * 0.002);  // above the fit's floor, so the margin shows
+  EXPECT_GT(at8, 1.5 * at4);
+  EXPECT_LT(at8, 2.5 * at4);
+}
+
 }  // namespace
 }  // namespace mote

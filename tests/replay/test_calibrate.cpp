@@ -186,6 +186,11 @@ TEST(CalibrateSimulated, ConfigLoadsAndCarriesTheFitAndTheStartingConfig) {
   EXPECT_FALSE(loaded.config.unmapped_obstacle_filter);
   EXPECT_DOUBLE_EQ(loaded.config.update_min_d, 0.15);
   EXPECT_DOUBLE_EQ(loaded.config.likelihood_tempering, 0.0);
+  // The margin search ran tracking runs and the config takes the best of them.
+  ASSERT_GE(r.margins.size(), 2U);
+  EXPECT_EQ(r.margins.front().margin, LocalizerConfig{}.motion_noise_margin);
+  EXPECT_GT(r.margins.front().poses, 100U);
+  EXPECT_DOUBLE_EQ(loaded.config.motion_noise_margin, best_margin(r.margins).margin);
   const std::string text = test::read_bytes(yaml);
   EXPECT_NE(text.find("fixed likelihood_tempering (0.5) is dropped"), std::string::npos);
   EXPECT_TRUE(std::filesystem::file_size(yaml.parent_path() / "calibration.png") > 1000);
@@ -208,6 +213,7 @@ TEST(CalibrateSimulated, AckermannConfigCarriesTheArcFit) {
   const LoadedConfig loaded = load_config(yaml);
   EXPECT_EQ(loaded.config.odom_model_type, OdomModel::kAckermann);
   EXPECT_DOUBLE_EQ(loaded.config.wheelbase, o.config.wheelbase);  // the fit's geometry
+  EXPECT_TRUE(r.margins.empty());  // the online noise estimate is the diff model's only
   EXPECT_NEAR(loaded.config.alpha1, f.ackermann->alpha_steering, 1e-5 * loaded.config.alpha1);
   EXPECT_NEAR(loaded.config.alpha3, f.ackermann->alpha_distance, 1e-5 * loaded.config.alpha3);
   EXPECT_NE(test::read_bytes(yaml).find("Ackermann (bicycle"), std::string::npos);

@@ -108,6 +108,9 @@ struct LocalizerConfig {
   /// updates have been seen, starting from the values above (diff model only: omni and
   /// Ackermann read their alphas differently; nav2: off).
   bool adaptive_motion_noise = true;
+  /// adaptive_motion_noise: the variance factor on the fitted noise (OdometryNoiseConfig::safety,
+  /// which says why 4). `mote calibrate` chooses it per log.
+  double motion_noise_margin = 4.0;
 
   // --- sensor model (Thrun tables 6.1, 6.3) -----------------------------------------------
   LaserModel laser_model_type = LaserModel::kLikelihoodField;
