@@ -47,26 +47,6 @@ Key field(std::string_view name, std::string_view expected, Field LocalizerConfi
           [member](const LocalizerConfig& c) { return text_of(static_cast<T>(c.*member)); }};
 }
 
-const char* name_of(LaserModel m) { return m == LaserModel::kBeam ? "beam" : "likelihood_field"; }
-
-const char* name_of(OdomModel m) {
-  switch (m) {
-    case OdomModel::kOmni:
-      return "omni";
-    case OdomModel::kAckermann:
-      return "ackermann";
-    case OdomModel::kDiff:
-      break;
-  }
-  return "diff";
-}
-
-const char* name_of(LikelihoodCombination m) {
-  return m == LikelihoodCombination::kAmclCubedSum ? "amcl" : "product";
-}
-
-const char* name_of(RayCasting m) { return m == RayCasting::kTable ? "table" : "exact"; }
-
 LaserModel parse_laser_model(const std::string& s) {
   // amcl's likelihood_field_prob adds beam skipping on top of the likelihood field.
   if (s == "likelihood_field" || s == "likelihood_field_prob") return LaserModel::kLikelihoodField;
@@ -340,6 +320,26 @@ LoadedConfig parse_config(const std::string& yaml_text, const std::string& name)
   validate(loaded.config, params, name);
   return loaded;
 }
+
+const char* name_of(LaserModel m) { return m == LaserModel::kBeam ? "beam" : "likelihood_field"; }
+
+const char* name_of(OdomModel m) {
+  switch (m) {
+    case OdomModel::kOmni:
+      return "omni";
+    case OdomModel::kAckermann:
+      return "ackermann";
+    case OdomModel::kDiff:
+      break;
+  }
+  return "diff";
+}
+
+const char* name_of(LikelihoodCombination m) {
+  return m == LikelihoodCombination::kAmclCubedSum ? "amcl" : "product";
+}
+
+const char* name_of(RayCasting m) { return m == RayCasting::kTable ? "table" : "exact"; }
 
 std::string config_yaml(const LocalizerConfig& config, const LocalizerConfig& base) {
   std::string yaml;

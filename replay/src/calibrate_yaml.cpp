@@ -27,18 +27,6 @@ std::string quality(const FitQuality& q, const char* what) {
   return s;
 }
 
-const char* odom_name(OdomModel m) {
-  switch (m) {
-    case OdomModel::kOmni:
-      return "omni";
-    case OdomModel::kAckermann:
-      return "ackermann";
-    case OdomModel::kDiff:
-      break;
-  }
-  return "diff";
-}
-
 void sensor_section(std::ostringstream& y, const CalibrationResult& r, const CalibrationRound& f) {
   const LocalizerConfig& c = r.config;
   const BeamMixture& b = f.beam.params;
@@ -101,7 +89,7 @@ void motion_section(std::ostringstream& y, const CalibrationResult& r, const Cal
     << "# " << o.outliers << " increments beyond 4 sigma of a first fit left out.\n"
     << "# Pose noise of the trajectory fitted alongside: " << num(o.pose_variance_xy) << " m^2, "
     << num(o.pose_variance_theta) << " rad^2.\n"
-    << "odom_model_type: " << odom_name(c.odom_model_type) << "\n";
+    << "odom_model_type: " << name_of(c.odom_model_type) << "\n";
   if (f.ackermann) {
     const AckermannFit& k = *f.ackermann;
     y << "# Ackermann (bicycle, wheelbase " << num(c.wheelbase)

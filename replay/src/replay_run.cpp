@@ -155,8 +155,6 @@ const char* outcome_name(UpdateOutcome outcome) noexcept {
   return "unknown";
 }
 
-const char* model_name(LaserModel model) noexcept {
-  return model == LaserModel::kBeam ? "beam" : "likelihood_field";
-}
+const char* model_name(LaserModel model) noexcept { return name_of(model); }
 
 }  // namespace mote::replay

@@ -183,6 +183,12 @@ struct LoadedConfig {
 /// As load_config, from YAML text; `name` stands for the file in messages.
 [[nodiscard]] LoadedConfig parse_config(const std::string& yaml_text, const std::string& name);
 
+/// The name load_config reads each model by (the first of its spellings).
+[[nodiscard]] const char* name_of(LaserModel model);
+[[nodiscard]] const char* name_of(OdomModel model);
+[[nodiscard]] const char* name_of(LikelihoodCombination combination);
+[[nodiscard]] const char* name_of(RayCasting casting);
+
 /// The flat YAML (one `key: value` line per field, load_config's names) of every field of
 /// `config` that differs from `base`: parse_config of the text over `base`'s values gives
 /// `config` back exactly (doubles are written to round-trip). With the default base the text
