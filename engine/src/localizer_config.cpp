@@ -88,7 +88,7 @@ void validate_sensor(const LocalizerConfig& c) {
   // exponent there is no search to replace and it would be silently ignored.
   require(c.tracking_tempering == 0.0 || c.likelihood_tempering == 0.0, "tracking_tempering",
           "0 when likelihood_tempering fixes the exponent (it replaces the adaptive search of "
-          "likelihood_tempering: 0 once the belief has settled)");
+          "likelihood_tempering: 0 once the belief has settled; nav2's defaults fix it at 1)");
   require(finite_positive(c.tempering_ess_fraction) && c.tempering_ess_fraction < 1.0,
           "tempering_ess_fraction", "a fraction in (0, 1)");
   require(std::isfinite(c.laser_min_range), "laser_min_range", "a finite number");

@@ -155,7 +155,7 @@ void bind_config(py::module_& m) {
       },
       py::arg("config"), py::arg("base") = py::none(),
       "The flat YAML of every field that differs from base (default: mote's defaults); "
-      "load_config reads it back exactly.");
+      "against mote's defaults load_config reads it back exactly.");
 }
 
 }  // namespace mote::python

@@ -75,6 +75,7 @@ void bind_stats(py::module_& m) {
       .def_readonly("tempering", &UpdateStats::tempering, "likelihood exponent tau")
       .def_readonly("tempering_trials", &UpdateStats::tempering_trials)
       .def_readonly("scan_fit", &UpdateStats::scan_fit)
+      .def_readonly("log_evidence", &UpdateStats::log_evidence)
       .def_readonly("alphas", &UpdateStats::alphas)
       .def_readonly("log_w_slow", &UpdateStats::log_w_slow)
       .def_readonly("log_w_fast", &UpdateStats::log_w_fast)

@@ -117,6 +117,7 @@ def test_scan_and_update_stats(localizer):
     assert u.outcome == mote.UpdateOutcome.UPDATED and u.ran
     assert u.beams > 0 and u.particles > 0 and 0 < u.effective_sample_size <= u.weighed
     assert 0 < u.tempering <= 1 and u.ms.total >= u.ms.sensor >= 0
+    assert np.isfinite(u.log_evidence) and u.log_evidence != 0.0
     assert localizer.update((0.5, 0.0, 0.0), s) is False
     assert localizer.last_update.outcome == mote.UpdateOutcome.NOT_MOVED
     e = localizer.estimate

@@ -121,9 +121,10 @@ void motion_section(std::ostringstream& y, const CalibrationResult& r, const Cal
     << "adaptive_motion_noise: " << (c.adaptive_motion_noise ? "true" : "false") << "\n";
   if (r.margins.empty()) return;
   y << "# The online estimate's variance margin, chosen by how well the scans fit the map at the\n"
-       "# filter's estimates (mean per-beam log-density, nats), one run per margin:\n#";
+       "# filter's estimates (mean per-beam log-density over two tracking runs +- half their\n"
+       "# difference, nats); a step is taken when it gains more than the two spreads:\n#";
   for (const MarginTrial& t : r.margins) {
-    y << " " << num(t.margin) << ": " << num(t.fit);
+    y << " " << num(t.margin) << ": " << num(t.fit) << " +- " << num(t.spread);
   }
   y << "\nmotion_noise_margin: " << num(c.motion_noise_margin) << "\n";
 }
@@ -148,6 +149,7 @@ void unfitted_section(std::ostringstream& y, const CalibrationResult& r) {
   rest.alpha4 = defaults.alpha4;
   rest.alpha5 = defaults.alpha5;
   rest.adaptive_motion_noise = defaults.adaptive_motion_noise;
+  rest.threads = defaults.threads;  // the calibrating machine's, not the filter's
   if (!r.margins.empty()) rest.motion_noise_margin = defaults.motion_noise_margin;
   const std::string kept = config_yaml(rest, defaults);
   if (kept.empty()) return;

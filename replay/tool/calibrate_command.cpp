@@ -129,7 +129,9 @@ void print_summary(const replay::CalibrationResult& r, const std::filesystem::pa
   if (!r.margins.empty()) {
     std::printf("  noise margin  %.3g (scan fit at the estimates, nats:",
                 r.config.motion_noise_margin);
-    for (const replay::MarginTrial& t : r.margins) std::printf(" %.3g: %.4f", t.margin, t.fit);
+    for (const replay::MarginTrial& t : r.margins) {
+      std::printf(" %.3g: %.4f+-%.4f", t.margin, t.fit, t.spread);
+    }
     std::printf(")\n");
   }
   if (f.ackermann) {

@@ -306,6 +306,12 @@ TEST(ConfigYaml, WritesOnlyWhatDiffersFromTheBase) {
   c.wheelbase = 1.2;
   c.max_beams = 90;
   EXPECT_EQ(config_yaml(c), "wheelbase: 1.2\nmax_beams: 90\n");
+  // every_field_changed keeps the adaptive search (tracking_tempering needs it): a fixed
+  // exponent is written and read back too.
+  LocalizerConfig fixed;
+  fixed.likelihood_tempering = 0.3;
+  EXPECT_EQ(config_yaml(fixed), "likelihood_tempering: 0.3\n");
+  EXPECT_TRUE(parse_config(config_yaml(fixed), "f.yaml").config == fixed);
   // Against nav2's defaults, the text holds what mote's defaults change, and read over nav2's
   // values (`defaults: nav2`) gives mote's defaults back.
   const std::string over_nav2 = config_yaml(LocalizerConfig{}, nav2_defaults());

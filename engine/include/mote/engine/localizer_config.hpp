@@ -190,9 +190,10 @@ struct LoadedConfig {
 [[nodiscard]] const char* name_of(RayCasting casting);
 
 /// The flat YAML (one `key: value` line per field, load_config's names) of every field of
-/// `config` that differs from `base`: parse_config of the text over `base`'s values gives
-/// `config` back exactly (doubles are written to round-trip). With the default base the text
-/// is a complete flat file for mote's defaults.
+/// `config` that differs from `base`, doubles written to round-trip. Against mote's defaults
+/// (the default base) parse_config of the text gives `config` back exactly; against
+/// nav2_defaults() it does with a `defaults: nav2` line in front. Empty when nothing differs
+/// (load_config refuses an empty file).
 [[nodiscard]] std::string config_yaml(const LocalizerConfig& config,
                                       const LocalizerConfig& base = {});
 

@@ -190,26 +190,30 @@ struct AckermannFit {
 /// sensor model, the tempering and the particle count (Intel, calibrated config, 5000
 /// particles, seeds 1-3: margin 4 ATE 0.0506 m, 10 0.0486 m, 14 0.0509 m, 16 loses track on
 /// seed 1). calibrate() chooses it by how well the scans fit the map at the poses the filter
-/// estimates: the mean, over a tracking run's updates, of the per-beam mean log-density
-/// z_hit N(d; 0, sigma_hit^2) + z_rand / range_max of the endpoints' distances d to the map
-/// (table 6.3, the fitted field's parameters), which needs no reference and falls where the
-/// track is lost.
+/// estimates: the mean, over the updates of two tracking runs (the config's seed and the next),
+/// of the per-beam mean log-density z_hit N(d; 0, sigma_hit^2) + z_rand / range_max of the
+/// endpoints' distances d to the map (table 6.3, the fitted field's parameters), which needs no
+/// reference and falls where a track is lost.
 struct MarginTrial {
   double margin = 0;      ///< motion_noise_margin tried
   double fit = 0;         ///< mean per-beam log-density at the estimates, nats
-  std::size_t poses = 0;  ///< estimates scored
+  double spread = 0;      ///< half the two runs' difference: the standard error of `fit`
+  std::size_t poses = 0;  ///< estimates scored, over both runs
+  bool accepted = false;  ///< the search took this step (search_margin)
 };
 
 /// The fit of a tracking run with the given margin: MarginTrial without its margin.
 using MarginScorer = std::function<MarginTrial(double margin)>;
 
-/// Hill-climbing over margins start * sqrt(2)^k within [min, max]: upward while the fit
-/// improves, then downward from start if the first step up did not. Returns every trial in the
-/// order run; best_margin() picks from them. Throws Error unless 0 < min <= start <= max.
+/// Hill-climbing over margins start * sqrt(2)^k (to three digits) within [min, max]: upward
+/// while a step improves the fit by more than the two trials' spreads together (what the runs'
+/// disagreement says is noise), then downward from start the same way if the first step up did
+/// not. Returns every trial in the order run, the start and the steps taken `accepted`. Throws
+/// Error unless 0 < min <= start <= max.
 [[nodiscard]] std::vector<MarginTrial> search_margin(const MarginScorer& score, double start,
                                                      double min = 1.0, double max = 64.0);
 
-/// The trial with the highest fit (the first of equal ones); throws Error for none.
+/// The accepted trial with the highest fit: where the search ended. Throws Error for none.
 [[nodiscard]] const MarginTrial& best_margin(const std::vector<MarginTrial>& trials);
 
 /// What calibrate() reports while it runs: round (0-based), scans of this round done, total.
