@@ -46,11 +46,11 @@ constexpr std::string_view kAbout =
 
 replay::CalibrationProgress progress_bar() {
   if (isatty(STDERR_FILENO) == 0) return {};
-  return [](int round, std::size_t done, std::size_t total) {
+  return [](int run, std::size_t done, std::size_t total) {
     if (done % 20 != 0 && done != total) return;
     constexpr std::size_t kWidth = 40;
     const std::size_t filled = total == 0 ? 0 : done * kWidth / total;
-    std::fprintf(stderr, "\rround %d [%s%s] %zu/%zu scans", round + 1,
+    std::fprintf(stderr, "\rfilter run %d [%s%s] %zu/%zu scans", run + 1,
                  std::string(filled, '#').c_str(), std::string(kWidth - filled, '.').c_str(), done,
                  total);
     if (done == total) std::fprintf(stderr, "\n");

@@ -216,7 +216,8 @@ using MarginScorer = std::function<MarginTrial(double margin)>;
 /// The accepted trial with the highest fit: where the search ended. Throws Error for none.
 [[nodiscard]] const MarginTrial& best_margin(const std::vector<MarginTrial>& trials);
 
-/// What calibrate() reports while it runs: round (0-based), scans of this round done, total.
+/// What calibrate() reports while it runs: which filter run (0-based: the self-calibration
+/// rounds first, then the margin search's tracking runs), scans of it done, total.
 using CalibrationProgress =
     std::function<void(int round, std::size_t scans_done, std::size_t scans_total)>;
 
