@@ -22,4 +22,12 @@ struct Bounded {
     const std::function<double(const std::vector<double>&)>& f, const std::vector<Bounded>& params,
     int max_evaluations, int& evaluations);
 
+/// Standard errors of the parameters of f's minimum `at` (f a negative log-likelihood): the
+/// square roots of the inverse observed information's diagonal (calibrate_information.cpp). A
+/// parameter at a bound of `params` is held there and gets 0; all are 0 when the information
+/// is not positive definite.
+[[nodiscard]] std::vector<double> standard_errors(
+    const std::function<double(const std::vector<double>&)>& f, const std::vector<double>& at,
+    const std::vector<Bounded>& params);
+
 }  // namespace mote::replay::detail

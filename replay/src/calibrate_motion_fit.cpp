@@ -210,6 +210,14 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
         return diff_nll(rs, diff_from(v, true, !estimated_poses));
       },
       diff_bounds(true, pose_max), kEvaluations, evals);
+  const std::vector<double> se = detail::standard_errors(
+      [&](const std::vector<double>& v) {
+        return diff_nll(rs, diff_from(v, true, !estimated_poses));
+      },
+      biased, diff_bounds(true, pose_max));
+  fit.alphas_se = {se[0], se[1], se[2], se[3]};
+  fit.translation_bias_se = se[7];
+  fit.rotation_bias_se = se[8];
   const DiffParams p = diff_from(biased, true, !estimated_poses);
   fit.alphas = {p.a1, p.a2, p.a3, p.a4};
   fit.pose_variance_xy = p.pose_xy;
@@ -224,6 +232,12 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
       },
       diff_bounds(false, pose_max), kEvaluations, evals);
   fit.alphas_zero_mean = {zero[0], zero[1], zero[2], zero[3]};
+  const std::vector<double> zero_se = detail::standard_errors(
+      [&](const std::vector<double>& v) {
+        return diff_nll(rs, diff_from(v, false, !estimated_poses));
+      },
+      zero, diff_bounds(false, pose_max));
+  fit.alphas_zero_mean_se = {zero_se[0], zero_se[1], zero_se[2], zero_se[3]};
   fit.quality.log_likelihood_after = -diff_nll(rs, diff_from(zero, false, !estimated_poses));
   fit.quality.iterations += evals;
   note_bounds(fit.quality, "", {zero[0], zero[1], zero[2], zero[3]});

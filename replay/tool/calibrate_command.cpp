@@ -121,11 +121,13 @@ void print_summary(const replay::CalibrationResult& r, const std::filesystem::pa
       "  tempering     %.3f (neighbouring beams' range errors: rho_1 %.3f, %zu lags, %zu "
       "pairs)\n",
       c.tempering, c.rho.empty() ? 0.0 : c.rho.front(), c.rho.size(), c.pairs);
+  const OdometryAlphas& se = f.odometry.alphas_zero_mean_se;
   std::printf(
-      "  odometry      alpha1 %.4g  alpha2 %.4g  alpha3 %.4g  alpha4 %.4g (bias: trans %.3f, rot "
-      "%.3f)\n",
-      a.alpha1, a.alpha2, a.alpha3, a.alpha4, f.odometry.translation_bias,
-      f.odometry.rotation_bias);
+      "  odometry      alpha1 %.4g+-%.2g  alpha2 %.4g+-%.2g  alpha3 %.4g+-%.2g  alpha4 %.4g+-%.2g "
+      "(bias: trans %.3f+-%.3f, rot %.3f+-%.3f; +- one standard error)\n",
+      a.alpha1, se.alpha1, a.alpha2, se.alpha2, a.alpha3, se.alpha3, a.alpha4, se.alpha4,
+      f.odometry.translation_bias, f.odometry.translation_bias_se, f.odometry.rotation_bias,
+      f.odometry.rotation_bias_se);
   if (!r.margins.empty()) {
     std::printf("  noise margin  %.3g (scan fit at the estimates, nats:",
                 r.config.motion_noise_margin);

@@ -2,6 +2,7 @@
 // the simulator drew from the models themselves (its --alphas / --mixture knobs).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -150,10 +151,12 @@ TEST(CalibrateSimulated, RecoversKnownParametersWithReference) {
   }
 }
 
-// Without the reference the sensor fits meet issue 17's bounds; the self-calibrated alphas do
-// not yet (they miss the 15% by 20-25%: alpha2 of the modest robot, alpha4 of all three, alpha1
-// of the noisy one, README "Calibrating"), so this test holds the sensor fits only and issue 17
-// stays open for the alphas.
+// Without the reference the sensor fits meet issue 17's bounds; the self-calibrated odometry
+// figures do not all (modest alpha2, noisy rotation scale error, biased alpha4). At 900
+// increments alpha4's standard error is 15% of it and the noisy rotation scale error's 0.023,
+// so those bounds are one standard error; at 2700 a systematic shift of the rotation scale
+// error from the refined poses' position noise remains (README "Calibrating"). This test holds
+// the sensor fits only and issue 17 stays open for the odometry.
 TEST(CalibrateSimulated, RecoversSensorParametersWithoutReference) {
   for (const Setting& s : kSettings) {
     CalibrationOptions o = simulated(s, test::temp_dir() / s.name);
@@ -195,6 +198,10 @@ TEST(CalibrateSimulated, ConfigLoadsAndCarriesTheFitAndTheStartingConfig) {
   EXPECT_NE(text.find("fixed likelihood_tempering (0.5) is dropped"), std::string::npos);
   EXPECT_TRUE(std::filesystem::file_size(yaml.parent_path() / "calibration.png") > 1000);
   EXPECT_NE(text.find("log-likelihood"), std::string::npos);
+  // Every alpha's standard error, none held at a bound on this robot.
+  const OdometryAlphas& se = r.rounds.back().odometry.alphas_zero_mean_se;
+  EXPECT_GT(std::min({se.alpha1, se.alpha2, se.alpha3, se.alpha4}), 0.0);
+  EXPECT_NE(text.find("# Standard errors (observed information): alpha1 "), std::string::npos);
 }
 
 /// With an Ackermann config the config carries the Ackermann fit in the model's alphas (alpha1

@@ -130,6 +130,10 @@ struct OdometryFit {
   /// reference poses.
   double pose_variance_xy = 0, pose_variance_theta = 0;
   std::size_t outliers = 0;  ///< increments beyond 4 sigma of a first fit, left out
+  /// Standard errors (observed information, calibrate_minimize.hpp) of alphas, of the biases
+  /// and of alphas_zero_mean: how far the increments pin each down (0: held at a bound).
+  OdometryAlphas alphas_se, alphas_zero_mean_se;
+  double translation_bias_se = 0, rotation_bias_se = 0;
   FitQuality quality;
 };
 
