@@ -182,17 +182,22 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
   const double min_travel = estimated_poses ? kMinTravelEstimated : 0.01;
   for (const MotionSample& s : samples) rs.push_back(motion_residual(s, min_travel));
 
+  // The negative log-likelihood of the increments kept (rs), with the scale biases fitted and
+  // with them held at 0.
+  const auto biased_nll = [&](const std::vector<double>& v) {
+    return diff_nll(rs, diff_from(v, true, !estimated_poses));
+  };
+  const auto zero_mean_nll = [&](const std::vector<double>& v) {
+    return diff_nll(rs, diff_from(v, false, !estimated_poses));
+  };
   OdometryFit fit;
   int evals = 0;
   const DiffParams start{0.2, 0.2, 0.2, 0.2, 1e-4, 1e-4, 0, 0, 1e-4};  // mote's defaults
   fit.quality.samples = rs.size();
   fit.quality.log_likelihood_before = -diff_nll(rs, start);
 
-  std::vector<double> biased = detail::minimize(
-      [&](const std::vector<double>& v) {
-        return diff_nll(rs, diff_from(v, true, !estimated_poses));
-      },
-      diff_bounds(true, pose_max), kEvaluations, evals);
+  std::vector<double> biased =
+      detail::minimize(biased_nll, diff_bounds(true, pose_max), kEvaluations, evals);
   // Increments beyond 4 sigma of the first fit are poses the trajectory got wrong (a heading
   // the refinement could not fix), not odometry noise: Gaussian noise puts 1 in 10^4 there, and
   // a few of them move the maximum far. They are left out and the fit repeated.
@@ -205,16 +210,9 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
   rs = std::move(kept);
   fit.quality.samples = rs.size();
   fit.quality.log_likelihood_before = -diff_nll(rs, start);
-  biased = detail::minimize(
-      [&](const std::vector<double>& v) {
-        return diff_nll(rs, diff_from(v, true, !estimated_poses));
-      },
-      diff_bounds(true, pose_max), kEvaluations, evals);
-  const std::vector<double> se = detail::standard_errors(
-      [&](const std::vector<double>& v) {
-        return diff_nll(rs, diff_from(v, true, !estimated_poses));
-      },
-      biased, diff_bounds(true, pose_max));
+  biased = detail::minimize(biased_nll, diff_bounds(true, pose_max), kEvaluations, evals);
+  const std::vector<double> se =
+      detail::standard_errors(biased_nll, biased, diff_bounds(true, pose_max));
   fit.alphas_se = {se[0], se[1], se[2], se[3]};
   fit.translation_bias_se = se[7];
   fit.rotation_bias_se = se[8];
@@ -226,19 +224,13 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
   fit.rotation_bias = p.bias_r;
   fit.quality.iterations = evals;
 
-  const std::vector<double> zero = detail::minimize(
-      [&](const std::vector<double>& v) {
-        return diff_nll(rs, diff_from(v, false, !estimated_poses));
-      },
-      diff_bounds(false, pose_max), kEvaluations, evals);
+  const std::vector<double> zero =
+      detail::minimize(zero_mean_nll, diff_bounds(false, pose_max), kEvaluations, evals);
   fit.alphas_zero_mean = {zero[0], zero[1], zero[2], zero[3]};
-  const std::vector<double> zero_se = detail::standard_errors(
-      [&](const std::vector<double>& v) {
-        return diff_nll(rs, diff_from(v, false, !estimated_poses));
-      },
-      zero, diff_bounds(false, pose_max));
+  const std::vector<double> zero_se =
+      detail::standard_errors(zero_mean_nll, zero, diff_bounds(false, pose_max));
   fit.alphas_zero_mean_se = {zero_se[0], zero_se[1], zero_se[2], zero_se[3]};
-  fit.quality.log_likelihood_after = -diff_nll(rs, diff_from(zero, false, !estimated_poses));
+  fit.quality.log_likelihood_after = -zero_mean_nll(zero);
   fit.quality.iterations += evals;
   note_bounds(fit.quality, "", {zero[0], zero[1], zero[2], zero[3]});
 

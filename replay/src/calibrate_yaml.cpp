@@ -90,7 +90,7 @@ void motion_section(std::ostringstream& y, const CalibrationResult& r, const Cal
     << ", alpha2 " << num(o.alphas_zero_mean_se.alpha2) << ", alpha3 "
     << num(o.alphas_zero_mean_se.alpha3) << ", alpha4 " << num(o.alphas_zero_mean_se.alpha4)
     << "; scale errors " << num(o.translation_bias_se) << ", " << num(o.rotation_bias_se)
-    << " (0: held at a bound).\n"
+    << " (0: held at a bound); the alphas' are those of the zero-mean alphas below.\n"
     << "# " << o.outliers << " increments beyond 4 sigma of a first fit left out.\n"
     << "# Pose noise of the trajectory fitted alongside: " << num(o.pose_variance_xy) << " m^2, "
     << num(o.pose_variance_theta) << " rad^2.\n"
