@@ -155,6 +155,11 @@ TEST_F(MapErrors, PngFiles) {
   for (int k = 0; k < 4; ++k) huge[29 + k] = static_cast<char>(crc >> (24 - 8 * k));
   write("map.png", huge);
   expect_error(y, img, "header claims 60000 x 60000 pixels");
+  // A text chunk after IHDR whose length claims 1.6 GB: refused before libpng allocates it.
+  std::string lying = png;
+  lying.insert(33, "\x64\x00\x00\x1atEXtSoftware\0mote"s);
+  write("map.png", lying);
+  expect_error(y, img, "tEXt chunk claims 1677721626 bytes, only");
 }
 
 /// Every proper prefix of a valid image must be rejected with InputError, and random byte
