@@ -146,6 +146,8 @@ struct MotionResidual {
   double rot1_signed = 0;                ///< motion's rot1, rad, not folded
   double rot = 0;                        ///< motion's total rotation
   bool has_direction = false;            ///< travelled at least min_travel: rot1 is defined
+  /// The odometry's own (rot1 - rot2)^2 (backward steps folded, rot1 = 0 below 1 cm), rad^2.
+  double split_odometry = 0;
   /// The poses' known variance along and across the motion (both poses, m^2) and in heading
   /// (the first pose's and the second's, rad^2).
   double pose_along = 0, pose_lateral = 0, pose_theta0 = 0, pose_theta1 = 0;
