@@ -15,6 +15,7 @@
 #include <numbers>
 #include <random>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "mote/maps/map_loader.hpp"
@@ -84,24 +85,26 @@ const mote::OccupancyGrid* grid_for(int map) {
 /// random rooms and walls.
 mote::OccupancyGrid big_grid() { return mote::load_map(mote::bench::write_office_map(4000)); }
 
-/// The range table of a map, built once per process (default options: 512 angles, 256 MB).
-const mote::RangeTable* table_for(int map) {
-  static std::map<int, std::unique_ptr<mote::RangeTable>> cache;
-  auto& slot = cache[map];
+/// The range table of a map, built once per process (default options: 512 angles, 256 MB;
+/// certified or not).
+const mote::RangeTable* table_for(int map, bool certify) {
+  static std::map<std::pair<int, bool>, std::unique_ptr<mote::RangeTable>> cache;
+  auto& slot = cache[{map, certify}];
   if (!slot) {
     const mote::OccupancyGrid* grid = grid_for(map);
     if (grid == nullptr) return nullptr;
-    slot = std::make_unique<mote::RangeTable>(*grid);
+    slot = std::make_unique<mote::RangeTable>(*grid, mote::RangeTableOptions{.certify = certify});
   }
   return slot.get();
 }
 
 /// The range table, built once per map outside the timed loop.
+template <bool kCertify>
 struct TableCaster {
   const mote::RangeTable* table;
   TableCaster(const mote::OccupancyGrid& grid, const mote::RayCastOptions&) {
     for (int map : {0, 1}) {
-      if (grid_for(map) == &grid) table = table_for(map);
+      if (grid_for(map) == &grid) table = table_for(map, kCertify);
     }
   }
   void cast(const mote::RayBatch& batch, std::span<float> ranges) const {
@@ -145,7 +148,12 @@ void BM_RayCast_GridWalk(benchmark::State& state) {
 }
 
 void BM_RayCast_Table(benchmark::State& state) {
-  run_cast<TableCaster>(state, mote::RayCastOptions{});
+  run_cast<TableCaster<false>>(state, mote::RayCastOptions{});
+}
+
+/// The certified table: rays of uncertified entries are cast with Embree.
+void BM_RayCast_TableCertified(benchmark::State& state) {
+  run_cast<TableCaster<true>>(state, mote::RayCastOptions{});
 }
 
 /// Table build time with the default options (512 angles, 256 MB budget): map 0 Intel,
@@ -155,6 +163,7 @@ void BM_RayCast_Table(benchmark::State& state) {
 /// test_range_table measures on every cell.
 void BM_RangeTable_Build(benchmark::State& state) {
   const int map = static_cast<int>(state.range(0));
+  const bool certify = state.range(2) == 1;
   static const mote::OccupancyGrid big = big_grid();
   const mote::OccupancyGrid* grid = map == 2 ? &big : grid_for(map);
   if (grid == nullptr) {
@@ -165,7 +174,10 @@ void BM_RangeTable_Build(benchmark::State& state) {
   std::unique_ptr<mote::RangeTable> table;
   for (auto _ : state) {
     table.reset();
-    arena.execute([&] { table = std::make_unique<mote::RangeTable>(*grid); });
+    arena.execute([&] {
+      table =
+          std::make_unique<mote::RangeTable>(*grid, mote::RangeTableOptions{.certify = certify});
+    });
   }
   const mote::RangeTableStats& stats = table->stats();
   const mote::RayCaster exact(*grid);
@@ -176,6 +188,7 @@ void BM_RangeTable_Build(benchmark::State& state) {
   state.counters["MB"] = static_cast<double>(stats.bytes) / 1048576.0;
   state.counters["lattice"] = stats.lattice;
   state.counters["angles"] = stats.angles;
+  state.counters["uncertified"] = stats.uncertified;
   state.SetLabel(map == 0 ? "intel" : map == 1 ? "willow" : "4000x4000");
 }
 
@@ -216,10 +229,13 @@ BENCHMARK(BM_RayCast_Embree16)->Apply(cases);
 BENCHMARK(BM_RayCast_Embree1)->Apply(cases);
 BENCHMARK(BM_RayCast_GridWalk)->Apply(cases);
 BENCHMARK(BM_RayCast_Table)->Apply(cases);
+BENCHMARK(BM_RayCast_TableCertified)->Apply(cases);
 BENCHMARK(BM_RangeTable_Build)
-    ->ArgNames({"map", "threads"})
-    ->Args({0, 2})
-    ->Args({2, 2})
+    ->ArgNames({"map", "threads", "certify"})
+    ->Args({0, 2, 0})
+    ->Args({2, 2, 0})
+    ->Args({0, 2, 1})
+    ->Args({2, 2, 1})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);

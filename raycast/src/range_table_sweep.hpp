@@ -10,8 +10,11 @@
 
 namespace mote::detail {
 
-/// Range entry of a ray that leaves the map without meeting a blocking cell.
-inline constexpr std::uint16_t kNoHit = 0xFFFFU;
+/// Range entry of a ray that leaves the map without meeting a blocking cell (15 bits: the top
+/// bit is the certification flag).
+inline constexpr std::uint16_t kNoHit = 0x7FFFU;
+/// Top bit of an entry: set when the entry cannot vouch for its rays (range_table_certify.hpp).
+inline constexpr std::uint16_t kUncertified = 0x8000U;
 /// Lines per lattice step: the nearest line passes within half this of every lattice point.
 inline constexpr double kLineSpacing = 0.25;
 

@@ -28,7 +28,8 @@ constexpr float kMaxRange = 30.0F;
 /// the default 512 angles on a lattice of every cell. These are the values measured when the
 /// table was written (BENCHMARKS.md, "Range table"), kept as floors so a change that makes the
 /// table less accurate fails; issue 19 asked for 99% within one cell, which a 256 MB table of
-/// these maps does not reach (the misses are rays grazing walls, see BENCHMARKS.md).
+/// these maps does not reach (the misses are rays grazing walls, see BENCHMARKS.md); the
+/// certified table does (test_range_table_certified.cpp).
 struct Floor {
   const char* map;
   double within_one_cell;

@@ -25,6 +25,11 @@ struct RangeTableOptions {
   /// points) until the table fits; ConfigError when even the coarsest lattice does not.
   std::size_t memory_budget_bytes = std::size_t{256} << 20U;
   std::size_t particle_grain = 64;  ///< as RayCastOptions::particle_grain
+  /// Certify entries at build time and cast the rays of uncertified ones exactly, with Embree
+  /// (the scene is built beside the table and counted in its bytes). Entries then answer by
+  /// interpolating between the two table directions around the ray. Off: every ray reads the
+  /// table, at the nearest direction, fastest and least accurate (BENCHMARKS.md, "Range table").
+  bool certify = false;
 };
 
 /// What the table cost and how it is laid out.
@@ -35,6 +40,9 @@ struct RangeTableStats {
   std::size_t bytes = 0;        ///< everything the table holds: ranges, index, blocking mask
   double build_seconds = 0.0;   ///< wall clock of the sweep
   double units_per_cell = 8.0;  ///< fixed-point range units per cell
+  /// Share of entries that cannot vouch for their rays within a cell (a corner or gap nearby, a
+  /// jump between neighbouring angles): their rays are cast exactly, with Embree.
+  double uncertified = 0.0;
 };
 
 /// A ray caster answering from the table, with the RayCaster contract. A sensor inside or on the
