@@ -28,7 +28,8 @@ std::string Case::name() const {
          "/n:" + std::to_string(particles) + "/beams:" + std::to_string(beams) +
          "/threads:" + std::to_string(threads) + (nav2 ? "/defaults:nav2" : "") +
          (kld_min > 0 ? "/kld_min:" + std::to_string(kld_min) : "") +
-         (table ? "/ray_casting:table" : "");
+         (ray_casting != RayCasting::kExact ? std::string("/ray_casting:") + name_of(ray_casting)
+                                            : "");
 }
 
 std::vector<Case> all_cases() {
@@ -63,9 +64,10 @@ std::vector<Case> nav2_baseline_cases() {
 std::vector<Case> range_table_cases() {
   std::vector<Case> cases;
   for (const int particles : {10'000, 100'000}) {
-    for (const bool table : {false, true}) {
+    for (const RayCasting source :
+         {RayCasting::kExact, RayCasting::kTable, RayCasting::kTableCertified}) {
       Case c{LaserModel::kBeam, Setting::kTracking, particles, 60, 2};
-      c.table = table;
+      c.ray_casting = source;
       cases.push_back(c);
     }
   }

@@ -138,10 +138,16 @@ const std::vector<Key>& keys() {
         field<double>("recovery_fit_band", kNum, &LocalizerConfig::recovery_fit_band),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
         enum_key(
-            "ray_casting", "exact or table",
+            "ray_casting", "exact, table or table_certified",
             [](LocalizerConfig& c, const std::string& s) {
-              if (s != "exact" && s != "table") throw YAML::BadConversion(YAML::Mark::null_mark());
-              c.ray_casting = s == "table" ? RayCasting::kTable : RayCasting::kExact;
+              if (s == "exact")
+                c.ray_casting = RayCasting::kExact;
+              else if (s == "table")
+                c.ray_casting = RayCasting::kTable;
+              else if (s == "table_certified")
+                c.ray_casting = RayCasting::kTableCertified;
+              else
+                throw YAML::BadConversion(YAML::Mark::null_mark());
             },
             &LocalizerConfig::ray_casting),
         field<int>("range_table_angles", kInt, &LocalizerConfig::range_table_angles),
@@ -339,7 +345,17 @@ const char* name_of(LikelihoodCombination m) {
   return m == LikelihoodCombination::kAmclCubedSum ? "amcl" : "product";
 }
 
-const char* name_of(RayCasting m) { return m == RayCasting::kTable ? "table" : "exact"; }
+const char* name_of(RayCasting m) {
+  switch (m) {
+    case RayCasting::kTable:
+      return "table";
+    case RayCasting::kTableCertified:
+      return "table_certified";
+    case RayCasting::kExact:
+      break;
+  }
+  return "exact";
+}
 
 std::string config_yaml(const LocalizerConfig& config, const LocalizerConfig& base) {
   std::string yaml;

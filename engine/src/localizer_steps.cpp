@@ -36,10 +36,11 @@ MixtureParams mixture_of(const LocalizerConfig& c) {
 SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
   if (c.laser_model_type == LaserModel::kBeam) {
     std::optional<RangeTableOptions> table;
-    if (c.ray_casting == RayCasting::kTable) {
+    if (c.ray_casting != RayCasting::kExact) {
       table = RangeTableOptions{
           .angles = c.range_table_angles,
-          .memory_budget_bytes = static_cast<std::size_t>(c.range_table_budget_mb * 1048576.0)};
+          .memory_budget_bytes = static_cast<std::size_t>(c.range_table_budget_mb * 1048576.0),
+          .certify = c.ray_casting == RayCasting::kTableCertified};
     }
     return SensorVariant(std::in_place_type<BeamModel>, grid,
                          BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays}, table);

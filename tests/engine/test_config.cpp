@@ -225,7 +225,13 @@ TEST(ParseConfig, RayCastingSelectsExactOrTable) {
   EXPECT_DOUBLE_EQ(loaded.config.range_table_budget_mb, 64.0);
   EXPECT_TRUE(loaded.warnings.empty());
   EXPECT_EQ(parse_config("ray_casting: exact\n", "e.yaml").config.ray_casting, RayCasting::kExact);
-  expect_input_error("ray_casting: fast\n", "line 1, key 'ray_casting': expected exact or table");
+  EXPECT_EQ(parse_config("ray_casting: table_certified\n", "c.yaml").config.ray_casting,
+            RayCasting::kTableCertified);
+  LocalizerConfig certified;
+  certified.ray_casting = RayCasting::kTableCertified;
+  EXPECT_EQ(parse_config(config_yaml(certified, LocalizerConfig{}), "w.yaml").config, certified);
+  expect_input_error("ray_casting: fast\n",
+                     "line 1, key 'ray_casting': expected exact, table or table_certified");
   expect_input_error("range_table_angles: 100\n", "range_table_angles");
   expect_input_error("range_table_budget_mb: 0\n", "range_table_budget_mb");
 }

@@ -126,6 +126,15 @@ TEST_F(LocalizerOnIntel, BeamModelWithTheRangeTableTracksWithin5cmAnd1Degree) {
   EXPECT_LT(theta, 1.0 * kDeg);
 }
 
+TEST_F(LocalizerOnIntel, BeamModelWithTheCertifiedRangeTableTracksWithin5cmAnd1Degree) {
+  LocalizerConfig config = tracking_config(2000);
+  config.laser_model_type = LaserModel::kBeam;
+  config.ray_casting = RayCasting::kTableCertified;
+  const auto [xy, theta] = track(config, 40);
+  EXPECT_LT(xy, 0.05);
+  EXPECT_LT(theta, 1.0 * kDeg);
+}
+
 TEST_F(LocalizerOnIntel, GlobalLocalizationConverges) {
   LocalizerConfig config = tracking_config(0);
   config.min_particles = 2000;
@@ -252,12 +261,10 @@ TEST_F(LocalizerOnIntel, AllMaxRangeScansDoNotTriggerInjection) {
 
 // Runs 100 updates and returns the particle columns, bytes and all.
 std::vector<float> run_filter(const OccupancyGrid& map, Pose2 start, int threads, std::size_t grain,
-                              LaserModel model, bool table = false) {
+                              LaserModel model, RayCasting source = RayCasting::kExact) {
   LocalizerConfig config = tracking_config(0);
-  if (table) {
-    config.ray_casting = RayCasting::kTable;
-    config.range_table_angles = 64;  // a small table: built three times, also under sanitizers
-  }
+  config.ray_casting = source;
+  config.range_table_angles = 64;  // a small table: built three times, also under sanitizers
   config.min_particles = 500;
   config.max_particles = model == LaserModel::kBeam ? 1000 : 8000;
   config.threads = threads;
@@ -294,12 +301,15 @@ TEST_F(LocalizerOnIntel, BitIdenticalForAnyThreadCountAndGrain) {
 
 // Issue 19: the range table is built in parallel and looked up in parallel; neither may depend
 // on the thread count or the grain.
+// The certified table's exact casts are queued per chunk by particle index: the same.
 TEST_F(LocalizerOnIntel, RangeTableBitIdenticalForAnyThreadCountAndGrain) {
-  const std::vector<float> one = run_filter(*map_, start_, 1, 4096, LaserModel::kBeam, true);
-  EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 4096, LaserModel::kBeam, true)));
-  EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 256, LaserModel::kBeam, true)));
-  EXPECT_FALSE(bit_identical(one, run_filter(*map_, start_, 1, 4096, LaserModel::kBeam)))
-      << "the table's ranges are not the exact ones, so the runs must differ somewhere";
+  for (const RayCasting table : {RayCasting::kTable, RayCasting::kTableCertified}) {
+    const std::vector<float> one = run_filter(*map_, start_, 1, 4096, LaserModel::kBeam, table);
+    EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 4096, LaserModel::kBeam, table)));
+    EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 256, LaserModel::kBeam, table)));
+    EXPECT_FALSE(bit_identical(one, run_filter(*map_, start_, 1, 4096, LaserModel::kBeam)))
+        << "the table's ranges are not the exact ones, so the runs must differ somewhere";
+  }
 }
 
 TEST_F(LocalizerOnIntel, GateSkipsUpdatesWithoutMotion) {
