@@ -117,22 +117,16 @@ TEST_F(LocalizerOnIntel, BeamModelTracksWithin5cmAnd1Degree) {
   EXPECT_LT(theta, 1.0 * kDeg);
 }
 
-TEST_F(LocalizerOnIntel, BeamModelWithTheRangeTableTracksWithin5cmAnd1Degree) {
-  LocalizerConfig config = tracking_config(2000);
-  config.laser_model_type = LaserModel::kBeam;
-  config.ray_casting = RayCasting::kTable;
-  const auto [xy, theta] = track(config, 40);
-  EXPECT_LT(xy, 0.05);
-  EXPECT_LT(theta, 1.0 * kDeg);
-}
-
-TEST_F(LocalizerOnIntel, BeamModelWithTheCertifiedRangeTableTracksWithin5cmAnd1Degree) {
-  LocalizerConfig config = tracking_config(2000);
-  config.laser_model_type = LaserModel::kBeam;
-  config.ray_casting = RayCasting::kTableCertified;
-  const auto [xy, theta] = track(config, 40);
-  EXPECT_LT(xy, 0.05);
-  EXPECT_LT(theta, 1.0 * kDeg);
+// The plain and the certified range table.
+TEST_F(LocalizerOnIntel, BeamModelWithTheRangeTablesTracksWithin5cmAnd1Degree) {
+  for (const RayCasting table : {RayCasting::kTable, RayCasting::kTableCertified}) {
+    LocalizerConfig config = tracking_config(2000);
+    config.laser_model_type = LaserModel::kBeam;
+    config.ray_casting = table;
+    const auto [xy, theta] = track(config, 40);
+    EXPECT_LT(xy, 0.05) << name_of(table);
+    EXPECT_LT(theta, 1.0 * kDeg) << name_of(table);
+  }
 }
 
 TEST_F(LocalizerOnIntel, GlobalLocalizationConverges) {

@@ -168,18 +168,9 @@ TEST(RangeTable, HugeAnglesStayInRange) {
 TEST(RangeTable, BatchMatchesSingleRaysOnIntel) {
   MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
   const OccupancyGrid grid = load_map(path);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<float> x, y, theta, beams;
+  std::vector<float> beams;
   for (int b = 0; b < 61; ++b) beams.push_back(static_cast<float>(-1.5 + 0.05 * b));
-  const auto& free = grid.free_cells();
-  for (int i = 0; i < 1500; ++i) {
-    const auto f = static_cast<std::size_t>(u(rng) * static_cast<double>(free.size()));
-    const Point2 p = grid.free_point(std::min(f, free.size() - 1), u(rng), u(rng));
-    x.push_back(static_cast<float>(p.x));
-    y.push_back(static_cast<float>(p.y));
-    theta.push_back(static_cast<float>((2.0 * u(rng) - 1.0) * std::numbers::pi));
-  }
+  const auto [x, y, theta] = test::scatter_in_free_cells(grid, 1500, 11);
   const RayBatch batch{x, y, theta, beams, Pose2{}, kMaxRange};
   for (const std::size_t budget_mb : {std::size_t{256}, std::size_t{40}}) {
     const RangeTable table(grid, RangeTableOptions{.memory_budget_bytes = budget_mb << 20U});

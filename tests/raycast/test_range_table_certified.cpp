@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "grids.hpp"
 #include "mote/maps/map_loader.hpp"
 #include "mote/raycast/grid_ray_caster.hpp"
 #include "mote/raycast/range_table.hpp"
@@ -92,18 +93,9 @@ TEST(RangeTableCertified, BlockedAndOffMapStartsAreExact) {
 TEST(RangeTableCertified, SameOnAnyThreadCountAndAsSingleRays) {
   MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
   const OccupancyGrid grid = load_map(path);
-  std::mt19937_64 rng(13);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<float> x, y, theta, beams;
+  std::vector<float> beams;
   for (int b = 0; b < 61; ++b) beams.push_back(static_cast<float>(-1.5 + 0.05 * b));
-  const auto& free = grid.free_cells();
-  for (int i = 0; i < 1000; ++i) {
-    const auto f = static_cast<std::size_t>(u(rng) * static_cast<double>(free.size()));
-    const Point2 p = grid.free_point(std::min(f, free.size() - 1), u(rng), u(rng));
-    x.push_back(static_cast<float>(p.x + (i % 10 == 0 ? 0.5 : 0.0)));  // some off free cells
-    y.push_back(static_cast<float>(p.y));
-    theta.push_back(static_cast<float>((2.0 * u(rng) - 1.0) * std::numbers::pi));
-  }
+  const auto [x, y, theta] = test::scatter_in_free_cells(grid, 1000, 13, 10);
   const RayBatch batch{x, y, theta, beams, Pose2{}, kMaxRange};
   std::vector<std::vector<float>> out;
   for (const int threads : {1, 2}) {
