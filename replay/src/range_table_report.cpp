@@ -24,12 +24,13 @@ void line(std::ostream& out, const char* name, const std::string& value) {
 }  // namespace
 
 RangeTableSummary summarize_range_table(const OccupancyGrid& grid, const RangeTable& table,
-                                        bool unknown_blocks) {
-  const RayCaster exact(grid, RayCastOptions{.unknown_blocks = unknown_blocks});
+                                        const RangeTableOptions& options) {
+  const RayCaster exact(grid, RayCastOptions{.unknown_blocks = options.unknown_blocks});
   return {.stats = table.stats(),
           .accuracy = measure_range_table(table, exact, grid, kRangeTableCheckRays,
                                           kRangeTableCheckRange, 1),
-          .unknown_blocks = unknown_blocks};
+          .unknown_blocks = options.unknown_blocks,
+          .certified = options.certify};
 }
 
 void print_range_table(std::ostream& out, const RangeTableSummary& s) {
@@ -40,6 +41,11 @@ void print_range_table(std::ostream& out, const RangeTableSummary& s) {
            std::to_string(t.points) + " points");
   line(out, "  memory", fixed(static_cast<double>(t.bytes) / 1048576.0, 1) + " MB");
   line(out, "  build", fixed(t.build_seconds, 3) + " s");
+  if (s.certified) {
+    line(out, "  certified",
+         fixed(100.0 * (1.0 - t.uncertified), 2) + " % of entries; the rays of the other " +
+             fixed(100.0 * t.uncertified, 2) + " % are cast exactly, with Embree");
+  }
   line(out, "  vs Embree",
        fixed(100.0 * a.within_one_cell, 2) + " % within 1 cell, " +
            fixed(100.0 * a.within_two_cells, 2) + " % within 2 (" + std::to_string(a.rays) +
@@ -57,6 +63,8 @@ void write_range_table_json(JsonWriter& json, const RangeTableSummary& s) {
   json.member("angles", t.angles).member("lattice_cells", t.lattice);
   json.member("points", std::uint64_t{t.points}).member("bytes", std::uint64_t{t.bytes});
   json.member("build_s", t.build_seconds).member("unknown_blocks", s.unknown_blocks);
+  json.member("certified", s.certified);
+  if (s.certified) json.member("uncertified_entries", t.uncertified);
   json.key("vs_embree").begin_object();
   json.member("rays", std::uint64_t{a.rays});
   json.member("max_range_m", static_cast<double>(kRangeTableCheckRange));

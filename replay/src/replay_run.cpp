@@ -117,8 +117,10 @@ ReplayResult run_replay(const ReplayOptions& options) {
   Localizer filter(result.map, options.config);
   result.threads = filter.threads();
   if (const RangeTable* table = filter.range_table()) {
-    result.range_table =
-        summarize_range_table(result.map, *table, options.config.unknown_cells_block_rays);
+    result.range_table = summarize_range_table(
+        result.map, *table,
+        {.unknown_blocks = options.config.unknown_cells_block_rays,
+         .certify = options.config.ray_casting == RayCasting::kTableCertified});
   }
 
   const auto start = Clock::now();

@@ -12,11 +12,12 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 8> kFlags{{
+constexpr std::array<FlagSpec, 9> kFlags{{
     {"map", "MAP.yaml", "instead of a LOG: the map, and the beam model's range table built on it"},
     {"range-table-angles", "N", "with --map: table directions, a multiple of 32 (default 512)"},
     {"range-table-budget-mb", "MB", "with --map: table memory budget (default 256)"},
     {"unknown-free", "", "with --map: unknown cells do not stop rays (default: they do)"},
+    {"certified", "", "with --map: the certified table (ray_casting: table_certified)"},
     {"scan-topic", "TOPIC", "ROS bags: the LaserScan topic (default: the only one)"},
     {"odom-topic", "TOPIC", "ROS bags: the Odometry topic (default: the only one, or tf)"},
     {"odom-frame", "FRAME", "ROS bags: odometry frame when odometry comes from tf (default odom)"},
@@ -29,13 +30,15 @@ constexpr std::string_view kAbout =
     "counts per topic and type, the laser (beams, field of view, range limits, mounting pose)\n"
     "and the tf frames. LOG: CARMEN .clf/.log, ROS 1 .bag, rosbag2 folder, .mcap or .db3.\n"
     "With --map: the map's size and cells, and the range table (ray_casting: table) built on\n"
-    "it: layout, memory, build time and its error against exact Embree casting.";
+    "it: layout, memory, build time, the share of certified entries (--certified) and its\n"
+    "error against exact Embree casting.";
 
 int map_info(const ParsedArgs& args) {
   const std::string path = args.required("map");
   const OccupancyGrid grid = load_map(path);
   RangeTableOptions options;
   options.unknown_blocks = !args.has("unknown-free");
+  options.certify = args.has("certified");
   if (auto n = args.integer("range-table-angles", 32, 1 << 16)) {
     options.angles = static_cast<int>(*n);
   }
@@ -45,8 +48,7 @@ int map_info(const ParsedArgs& args) {
   std::cout << "map " << path << "\n  " << grid.width() << " x " << grid.height() << " cells of "
             << grid.resolution() << " m, " << grid.free_cell_count() << " free\n";
   const RangeTable table(grid, options);
-  replay::print_range_table(std::cout,
-                            replay::summarize_range_table(grid, table, options.unknown_blocks));
+  replay::print_range_table(std::cout, replay::summarize_range_table(grid, table, options));
   return 0;
 }
 

@@ -192,7 +192,8 @@ TEST(Cli, InfoDescribesRos2AndCarmenLogs) {
 }
 
 // Issue 19: `mote info --map` builds the range table and prints its layout, memory, build time
-// and error against Embree; a budget too small for any table is a one-line error naming the
+// and error against Embree (with --certified, the share of entries whose rays are cast exactly);
+// a budget too small for any table is a one-line error naming the
 // size needed.
 TEST(Cli, InfoMapReportsTheRangeTable) {
   const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
@@ -202,10 +203,40 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
                            "% within 1 cell", "error (cells)"}) {
     EXPECT_NE(o.out.find(text), std::string::npos) << text << " in\n" << o.out;
   }
+  EXPECT_EQ(o.out.find("certified"), std::string::npos) << o.out;
+  const Outcome certified =
+      mote("info --map '" + map.string() + "' --range-table-angles 64 --certified");
+  ASSERT_EQ(certified.status, 0) << certified.err;
+  EXPECT_NE(certified.out.find("% are cast exactly"), std::string::npos) << certified.out;
   const Outcome tiny = mote("info --map '" + map.string() + "' --range-table-budget-mb 0.001");
   EXPECT_EQ(tiny.status, 1) << tiny.out;
   EXPECT_EQ(lines(tiny.err), 1) << tiny.err;
   EXPECT_NE(tiny.err.find("needs"), std::string::npos) << tiny.err;
+}
+
+// Issue 19: report.json says whether the beam model's table is certified and which share of its
+// entries sends rays to Embree; the certified table tracks a simulated log.
+TEST(Cli, ReplayReportsTheCertifiedTable) {
+  const fs::path dir = scratch("certified");
+  const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
+  ASSERT_EQ(mote("simulate --map '" + map.string() + "' --out '" + dir.string() +
+                 "' --seconds 15 --seed 3")
+                .status,
+            0);
+  std::ofstream(dir / "certified.yaml") << "ray_casting: table_certified\n";
+  const Outcome o =
+      mote("replay --map '" + map.string() + "' --log '" + (dir / "sim.clf").string() +
+           "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" +
+           (dir / "out").string() + "' --particles 1000 --model beam --quiet --config '" +
+           (dir / "certified.yaml").string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string report = slurp(dir / "out" / "report.json");
+  EXPECT_NE(report.find("\"certified\": true"), std::string::npos) << report;
+  const double uncertified = json_number(report, "uncertified_entries");
+  EXPECT_GT(uncertified, 0.0);
+  EXPECT_LT(uncertified, 1.0);
+  EXPECT_GT(json_number(report, "within_one_cell"), 0.99);
+  EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
 }
 
 // An MCAP file cut short (here: the recording's zstd file cut in its middle, as a crash while

@@ -20,12 +20,17 @@ struct RangeTableSummary {
   RangeTableStats stats;
   RangeTableAccuracy accuracy;
   bool unknown_blocks = true;
+  /// RangeTableOptions::certify: the rays of uncertified entries (stats.uncertified of all) are
+  /// cast exactly, and the accuracy above includes them.
+  bool certified = false;
 };
 
 /// Measures `table` against an Embree caster of the same grid (kRangeTableCheckRays rays of at
-/// most kRangeTableCheckRange from free cells, seed 1).
+/// most kRangeTableCheckRange from free cells, seed 1). `options` are those the table was built
+/// with.
 [[nodiscard]] RangeTableSummary summarize_range_table(const OccupancyGrid& grid,
-                                                      const RangeTable& table, bool unknown_blocks);
+                                                      const RangeTable& table,
+                                                      const RangeTableOptions& options);
 
 /// Indented lines, as the replay summary prints its rows.
 void print_range_table(std::ostream& out, const RangeTableSummary& s);
