@@ -30,11 +30,24 @@ double nll1(double r, double mean, double v) {
   return 0.5 * ((r - mean) * (r - mean) / v + std::log(v));
 }
 
+/// Which poses the increments run between, and which stage of their fit reads them.
+enum class DiffStage {
+  kExactPoses,  ///< a reference: every channel, the bias in the direction channel too
+  /// the filter's poses: no bias in the direction channel (diff_sample), the along channel's
+  /// turns from the odometry (along_turns)
+  kEstimatedPoses,
+  kHeadingOnly,  ///< the filter's poses, direction channel left out (fit_biases_then_alphas)
+  kBiasesHeld,   ///< the filter's poses, the biases held and scaling the direction's mean too
+};
+
 struct DiffParams {
   double a1, a2, a3, a4, pose_xy, pose_theta, bias_t, bias_r, pose_lateral;
-  bool direction_bias = true;   ///< see diff_sample
-  bool heading_only = false;    ///< leave the direction channel out (fit_biases_then_alphas)
-  bool odometry_turns = false;  ///< the along channel's turns from the odometry (along_turns)
+  DiffStage stage = DiffStage::kExactPoses;
+
+  [[nodiscard]] bool direction_bias() const noexcept {
+    return stage == DiffStage::kExactPoses || stage == DiffStage::kBiasesHeld;
+  }
+  [[nodiscard]] bool odometry_turns() const noexcept { return stage != DiffStage::kExactPoses; }
 };
 
 struct SampleFit {
@@ -52,7 +65,7 @@ struct SampleFit {
 // and rot2 scaled by (1 + bias), E[split_odo^2] = ((1 + bias)^2 + alpha1 / 2) split^2 +
 // alpha1 rot^2 / 2 + 2 alpha2 trans^2, which is taken back.
 double along_turns(const MotionResidual& r, const DiffParams& p) {
-  if (!p.odometry_turns) return r.rot1 * r.rot1 + r.rot2 * r.rot2;
+  if (!p.odometry_turns()) return r.rot1 * r.rot1 + r.rot2 * r.rot2;
   const double rot2 = r.rot * r.rot, t2 = r.trans * r.trans;
   const double scale = (1 + p.bias_r) * (1 + p.bias_r) + 0.5 * p.a1;
   const double split2 = (r.split_odometry - 0.5 * p.a1 * rot2 - 2 * p.a2 * t2) / scale;
@@ -71,7 +84,8 @@ SampleFit diff_sample(const MotionResidual& r, const DiffParams& p) {
   const double va = std::max(v2 + p.pose_xy + r.pose_along, kPoseVarMin);
   f.nll = 0.5 * (along * along / va + std::log(va));
   f.worst = along * along / va;
-  if (!r.has_direction || p.heading_only) {  // no direction of travel: the heading alone
+  if (!r.has_direction ||
+      p.stage == DiffStage::kHeadingOnly) {  // no direction of travel: the heading alone
     const double vt = v1 + v3 + 2 * p.pose_theta + r.pose_theta0 + r.pose_theta1;
     f.nll += 0.5 * (theta * theta / vt + std::log(vt));
     f.worst = std::max(f.worst, theta * theta / vt);
@@ -86,7 +100,7 @@ SampleFit diff_sample(const MotionResidual& r, const DiffParams& p) {
   // carries the poses' position noise over the distance, the same noise as the direction error
   // with the opposite sign, and pulls the bias negative (errors in variables); the heading's
   // regressor, the whole rotation, is large against its noise.
-  const double dir = r.direction - (p.direction_bias ? p.bias_r * r.rot1_signed : 0.0);
+  const double dir = r.direction - (p.direction_bias() ? p.bias_r * r.rot1_signed : 0.0);
   const double a = v1 + (p.pose_lateral + r.pose_lateral) / (t * t) + p.pose_theta + r.pose_theta0;
   const double b = v1 + v3 + 2 * p.pose_theta + r.pose_theta0 + r.pose_theta1;
   const double c = v1 + p.pose_theta + r.pose_theta0;
@@ -122,14 +136,11 @@ double omni_nll(const std::vector<MotionResidual>& rs, const std::vector<double>
   return sum;
 }
 
-// Between estimated poses (`estimated`) no bias in the direction channel (see diff_sample) and
-// the along channel's turns from the odometry (along_turns).
-DiffParams diff_from(const std::vector<double>& v, bool with_bias, bool estimated) {
-  DiffParams p{v[0], v[1], v[2], v[3], v[4], v[5], with_bias ? v[7] : 0.0, with_bias ? v[8] : 0.0,
-               v[6]};
-  p.direction_bias = !estimated;
-  p.odometry_turns = estimated;
-  return p;
+// The parameter vector the minimizer moves (alphas, pose variances, pose_lateral, biases) read
+// at one stage of the fit (DiffStage).
+DiffParams diff_from(const std::vector<double>& v, bool with_bias, DiffStage stage) {
+  return {v[0], v[1], v[2], v[3], v[4], v[5], with_bias ? v[7] : 0.0, with_bias ? v[8] : 0.0,
+          v[6], stage};
 }
 
 std::vector<detail::Bounded> diff_bounds(bool with_bias, double pose_max) {
@@ -162,14 +173,9 @@ void note_bounds(FitQuality& q, const char* model, const std::vector<double>& al
 void fit_biases_then_alphas(const std::vector<MotionResidual>& rs, double pose_max,
                             OdometryFit& fit, int& evals) {
   // Stage 1: no pose_lateral (the direction channel is out).
-  const auto heading_params = [](const std::vector<double>& h) {
-    DiffParams p =
-        diff_from({h[0], h[1], h[2], h[3], h[4], h[5], kPoseVarMin, h[6], h[7]}, true, true);
-    p.heading_only = true;
-    return p;
-  };
   const auto heading_nll = [&](const std::vector<double>& h) {
-    return diff_nll(rs, heading_params(h));
+    return diff_nll(rs, diff_from({h[0], h[1], h[2], h[3], h[4], h[5], kPoseVarMin, h[6], h[7]},
+                                  true, DiffStage::kHeadingOnly));
   };
   std::vector<detail::Bounded> hb = diff_bounds(true, pose_max);
   hb.erase(hb.begin() + 6);
@@ -183,9 +189,8 @@ void fit_biases_then_alphas(const std::vector<MotionResidual>& rs, double pose_m
   // Stage 2: the biases held, the direction channel's mean scaled by them too (the odometry's
   // rot1 is scaled as its rot2, table 5.6 with a scale error).
   const auto held_nll = [&](const std::vector<double>& w) {
-    DiffParams p = diff_from({w[0], w[1], w[2], w[3], w[4], w[5], w[6], h[6], h[7]}, true, true);
-    p.direction_bias = true;
-    return diff_nll(rs, p);
+    return diff_nll(rs, diff_from({w[0], w[1], w[2], w[3], w[4], w[5], w[6], h[6], h[7]}, true,
+                                  DiffStage::kBiasesHeld));
   };
   const std::vector<detail::Bounded> wb = diff_bounds(false, pose_max);
   const std::vector<double> w = detail::minimize(held_nll, wb, kEvaluations, evals);
@@ -210,15 +215,16 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
   // Between estimated poses a step shorter than a few times their position noise has no
   // direction: its rot1 would be noise, and table 5.6 would read rot1 and rot2 as large turns.
   const double min_travel = estimated_poses ? kMinTravelEstimated : 0.01;
+  const DiffStage stage = estimated_poses ? DiffStage::kEstimatedPoses : DiffStage::kExactPoses;
   for (const MotionSample& s : samples) rs.push_back(motion_residual(s, min_travel));
 
   // The negative log-likelihood of the increments kept (rs), with the scale biases fitted and
   // with them held at 0.
   const auto biased_nll = [&](const std::vector<double>& v) {
-    return diff_nll(rs, diff_from(v, true, estimated_poses));
+    return diff_nll(rs, diff_from(v, true, stage));
   };
   const auto zero_mean_nll = [&](const std::vector<double>& v) {
-    return diff_nll(rs, diff_from(v, false, estimated_poses));
+    return diff_nll(rs, diff_from(v, false, stage));
   };
   OdometryFit fit;
   int evals = 0;
@@ -233,8 +239,7 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
   // a few of them move the maximum far. They are left out and the fit repeated.
   std::vector<MotionResidual> kept;
   for (const MotionResidual& r : rs) {
-    if (diff_sample(r, diff_from(biased, true, estimated_poses)).worst < kOutlier)
-      kept.push_back(r);
+    if (diff_sample(r, diff_from(biased, true, stage)).worst < kOutlier) kept.push_back(r);
   }
   fit.outliers = rs.size() - kept.size();
   rs = std::move(kept);
@@ -249,7 +254,7 @@ OdometryFit fit_odometry_noise(const std::vector<MotionSample>& samples, bool es
     fit.alphas_se = {se[0], se[1], se[2], se[3]};
     fit.translation_bias_se = se[7];
     fit.rotation_bias_se = se[8];
-    const DiffParams p = diff_from(biased, true, false);
+    const DiffParams p = diff_from(biased, true, DiffStage::kExactPoses);
     fit.alphas = {p.a1, p.a2, p.a3, p.a4};
     fit.pose_variance_xy = p.pose_xy;
     fit.pose_variance_theta = p.pose_theta;
