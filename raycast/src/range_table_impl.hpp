@@ -1,0 +1,126 @@
+#pragma once
+/// \file
+/// Internal: the range table's state (RangeTable::Impl) and the query's working types, shared by
+/// the build (range_table.cpp) and the queries (range_table_query.cpp).
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "embree_packets.hpp"
+#include "mote/raycast/range_table.hpp"
+#include "range_table_layout.hpp"
+#include "ray_setup.hpp"
+#include "wall_scene.hpp"
+
+namespace mote {
+
+namespace detail {
+
+/// Lattice points near a sensor and their offsets from it (cells). Always nine entries, so the
+/// choice among them is a fixed, branch-free loop; entry 0 is the sensor's own block and
+/// missing neighbours carry a mask of all ones below the sign bit that keeps them from being
+/// chosen (and keeps every key below 2^31, where signed and unsigned minima agree).
+inline constexpr std::uint32_t kMissing = 0x7FFFFFFFU;
+
+/// What RangeTable::Impl::read gives for an uncertified entry: no range, cast the ray exactly.
+inline constexpr float kCastExactly = -1.0F;
+/// What RangeTable::Impl::units_at gives for a ray that leaves the map without a hit.
+inline constexpr float kLeavesMap = std::numeric_limits<float>::infinity();
+
+struct Candidates {
+  static constexpr std::size_t kCount = 9;
+  std::array<std::uint32_t, kCount> slot{};
+  std::array<float, kCount> wx{};
+  std::array<float, kCount> wy{};
+  std::array<std::uint32_t, kCount> missing{};
+};
+
+/// The entries a lookup reads: the entry of the chosen lattice point and the sensor's own, and
+/// the offset along the ray (cells) from the sensor to each point. Chosen for all the beams of
+/// a sensor before any is read, so that the choice (the lookup's cost) runs on vector lanes.
+struct Choice {
+  std::size_t entry = 0;      ///< at the table angle below the ray's
+  std::size_t own_entry = 0;  ///< the sensor's own point, same angle
+  float along = 0.0F;
+  float own_along = 0.0F;
+  float frac = 0.0F;        ///< where the ray's angle lies between entry's angle and the next (0-1)
+  std::ptrdiff_t next = 1;  ///< entry + next: the next table angle (wraps at the row's end)
+};
+
+/// Per-beam working arrays of RangeTable::Impl::choose, reused across the sensors of one task.
+struct BeamScratch {
+  explicit BeamScratch(std::size_t beams)
+      : angle(beams), frac(beams), dx(beams), dy(beams), key(beams) {}
+  std::vector<std::uint32_t> angle;  ///< table angle below the ray's
+  std::vector<float> frac;           ///< the ray's angle past it, in steps (0-1)
+  std::vector<float> dx;             ///< its direction
+  std::vector<float> dy;
+  std::vector<std::int32_t> key;  ///< the running minimum of the candidates' keys
+};
+
+}  // namespace detail
+
+struct RangeTable::Impl {
+  int width = 0;
+  int height = 0;
+  float resolution = 1.0F;
+  Pose2 origin;
+  RangeTableOptions options;
+  std::vector<std::uint8_t> blocking;
+  /// The exact caster's scene, for the rays of uncertified entries.
+  std::unique_ptr<detail::WallScene> walls;
+  detail::TableLayout layout;
+  std::vector<std::uint16_t> ranges;  ///< ranges[slot * angles + a]
+  std::vector<float> cos_a;           ///< direction of table angle a in the grid frame
+  std::vector<float> sin_a;
+  std::vector<float> point_x;  ///< lattice point of each slot, in cells
+  std::vector<float> point_y;
+  RangeTableStats stats;
+
+  [[nodiscard]] detail::CellMask mask() const noexcept {
+    return {width, height, resolution, blocking.data()};
+  }
+  void build();
+  /// The lattice points of the sensor's block and its 8 neighbours, for a sensor at grid frame
+  /// point (gx, gy) m in on-map cell (i, j).
+  [[nodiscard]] detail::Candidates candidates(int i, int j, double gx, double gy) const noexcept;
+  /// Which entries answer for each beam of one sensor, at table angle index
+  /// heading + beam_index[b] (fractional, in [0, 2 * angles)). Inlined into cast_chunk: as a
+  /// call the plain table's queries ran about 5 % slower (bench_raycast, paired runs).
+  [[gnu::always_inline]] inline void choose(const detail::Candidates& c, double heading,
+                                            std::span<const double> beam_index,
+                                            detail::BeamScratch& scratch,
+                                            std::span<detail::Choice> choices) const noexcept;
+  /// The range (table units) entry reads at choice's angle, kLeavesMap or kCastExactly.
+  [[nodiscard]] [[gnu::always_inline]] inline float units_at(
+      std::size_t entry, const detail::Choice& choice) const noexcept;
+  /// The range (m) that choice reads, or kCastExactly.
+  [[nodiscard]] [[gnu::always_inline]] inline float read(const detail::Choice& choice,
+                                                         float max_range) const noexcept;
+  [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
+  /// Casts particles [begin, end) of a batch; rays of uncertified entries go to `exact` (a
+  /// Packet16), or nowhere when the table is not certified.
+  template <class Wrap, class Exact>
+  void cast_chunk(const detail::BatchRays& rays, const detail::CellMask& m,
+                  std::span<const double> beam_index, const Wrap& wrap, std::size_t begin,
+                  std::size_t end, std::span<float> out_ranges, Exact* exact) const;
+  /// cast_chunk with the exact caster: rays of uncertified entries, queued in particle order
+  /// within the chunk, so which rays share a packet depends on the grain only (design.md 3).
+  template <class Wrap>
+  void cast_chunk_certified(const detail::BatchRays& rays, const detail::CellMask& m,
+                            std::span<const double> beam_index, const Wrap& wrap, std::size_t begin,
+                            std::size_t end, std::span<float> out_ranges) const {
+    const detail::FlushDenormals denormals_off;
+    detail::Packet16 exact(walls->scene(), rays.max_range(), out_ranges);
+    cast_chunk(rays, m, beam_index, wrap, begin, end, out_ranges, &exact);
+    exact.flush();
+    detail::check_embree_thread("casting rays");
+  }
+};
+
+}  // namespace mote
