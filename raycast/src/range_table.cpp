@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -93,16 +94,20 @@ void RangeTable::Impl::build() {
     point_x.push_back(static_cast<float>(cell % static_cast<std::uint32_t>(width)) + 0.5F);
     point_y.push_back(static_cast<float>(cell / static_cast<std::uint32_t>(width)) + 0.5F);
   }
-  ranges.assign(points * angles, detail::kNoHit);
+  entries = points * angles;
+  // Not zero-filled: the tasks below write every entry, and touch the table's pages first in
+  // parallel (the serial fill was 4 % of the certified Intel build's perf samples; paired runs
+  // gave 2.03-2.04 s against 2.05-2.07 s).
+  ranges = std::make_unique_for_overwrite<std::uint16_t[]>(entries);
   // One task per 32 directions: each fills a column per direction, then writes its own run of
   // 32 entries (64 bytes) in every point's row, so tasks write disjoint entries, share at most
   // the cache lines where their runs meet, and the result is the same for any thread count.
   par::for_each_chunk(angles, kAngleGroup, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::uint16_t> columns((end - begin) * points);
+    const auto columns = std::make_unique_for_overwrite<std::uint16_t[]>((end - begin) * points);
     detail::SweepScratch scratch;
     for (std::size_t a = begin; a < end; ++a) {
       detail::sweep_direction(m, point_x, point_y, layout.lattice, cos_a[a], sin_a[a], units,
-                              scratch, {columns.data() + (a - begin) * points, points});
+                              scratch, {columns.get() + (a - begin) * points, points});
     }
     for (std::size_t p = 0; p < points; ++p) {
       for (std::size_t a = begin; a < end; ++a) {
@@ -110,14 +115,11 @@ void RangeTable::Impl::build() {
       }
     }
   });
-  std::size_t uncertified = 0;
-  if (options.certify) {
-    detail::certify({layout, point_x, point_y, cos_a, sin_a, units, kCertifyTolerance}, ranges);
-    uncertified =
-        static_cast<std::size_t>(std::count_if(ranges.begin(), ranges.end(), [](std::uint16_t v) {
-          return (v & detail::kUncertified) != 0;
-        }));
-  }
+  const std::size_t uncertified =
+      options.certify
+          ? detail::certify({layout, point_x, point_y, cos_a, sin_a, units, kCertifyTolerance},
+                            {ranges.get(), entries})
+          : 0;
   stats = {.angles = options.angles,
            .lattice = layout.lattice,
            .points = points,
@@ -128,8 +130,7 @@ void RangeTable::Impl::build() {
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
            .units_per_cell = units,
            .uncertified =
-               points == 0 ? 0.0
-                           : static_cast<double>(uncertified) / static_cast<double>(ranges.size())};
+               points == 0 ? 0.0 : static_cast<double>(uncertified) / static_cast<double>(entries)};
 }
 
 RangeTable::RangeTable(const OccupancyGrid& grid, RangeTableOptions options)

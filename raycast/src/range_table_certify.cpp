@@ -1,6 +1,7 @@
 #include "range_table_certify.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -123,7 +124,7 @@ void check_neighbour(const OffsetRow& w, const float* own, const float* other, s
 
 }  // namespace
 
-void certify(const CertifyInput& in, std::span<std::uint16_t> ranges) {
+std::size_t certify(const CertifyInput& in, std::span<std::uint16_t> ranges) {
   const std::size_t n = in.cos_a.size();
   const std::size_t points = in.layout.points();
   const auto inv_units = static_cast<float>(1.0 / in.units_per_cell);
@@ -149,13 +150,18 @@ void certify(const CertifyInput& in, std::span<std::uint16_t> ranges) {
       }
     }
   });
+  std::atomic<std::size_t> marked{0};  // a sum of integers: the same for any thread count
   par::for_each_chunk(points, kSlotGrain, [&](std::size_t begin, std::size_t end) {
+    std::size_t count = 0;
     for (std::size_t e = begin * n; e < end * n; ++e) {
       if (((verdict[e / 32] >> (e % 32)) & 1U) != 0) {
         ranges[e] = static_cast<std::uint16_t>(ranges[e] | kUncertified);
+        ++count;
       }
     }
+    marked.fetch_add(count, std::memory_order_relaxed);
   });
+  return marked.load();
 }
 
 }  // namespace mote::detail

@@ -30,6 +30,7 @@ struct CertifyInput {
 ///    along direction k: its hit, moved onto p's ray, lies within the tolerance of p's, scaled
 ///    by how much farther beside the ray it is than a query's origin can be (half a step).
 /// Parallel over slots, each writing its own row: the result is the same for any thread count.
-void certify(const CertifyInput& in, std::span<std::uint16_t> ranges);
+/// Returns how many entries it marked.
+std::size_t certify(const CertifyInput& in, std::span<std::uint16_t> ranges);
 
 }  // namespace mote::detail

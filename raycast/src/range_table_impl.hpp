@@ -75,8 +75,9 @@ struct RangeTable::Impl {
   /// The exact caster's scene, for the rays of uncertified entries.
   std::unique_ptr<detail::WallScene> walls;
   detail::TableLayout layout;
-  std::vector<std::uint16_t> ranges;  ///< ranges[slot * angles + a]
-  std::vector<float> cos_a;           ///< direction of table angle a in the grid frame
+  std::unique_ptr<std::uint16_t[]> ranges;  ///< ranges[slot * angles + a]
+  std::size_t entries = 0;                  ///< points * angles
+  std::vector<float> cos_a;                 ///< direction of table angle a in the grid frame
   std::vector<float> sin_a;
   std::vector<float> point_x;  ///< lattice point of each slot, in cells
   std::vector<float> point_y;
