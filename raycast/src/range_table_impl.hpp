@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "embree_packets.hpp"
+#include "huge_pages.hpp"
 #include "mote/raycast/range_table.hpp"
 #include "range_table_layout.hpp"
 #include "ray_setup.hpp"
@@ -75,7 +76,7 @@ struct RangeTable::Impl {
   /// The exact caster's scene, for the rays of uncertified entries.
   std::unique_ptr<detail::WallScene> walls;
   detail::TableLayout layout;
-  std::unique_ptr<std::uint16_t[]> ranges;  ///< ranges[slot * angles + a]
+  detail::HugeArray<std::uint16_t> ranges;  ///< ranges[slot * angles + a]
   std::size_t entries = 0;                  ///< points * angles
   std::vector<float> cos_a;                 ///< direction of table angle a in the grid frame
   std::vector<float> sin_a;
