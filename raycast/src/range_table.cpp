@@ -76,31 +76,22 @@ double units_for(int width, int height) {
 }
 }  // namespace
 
-void RangeTable::Impl::build() {
-  const auto start = std::chrono::steady_clock::now();
-  const detail::CellMask m = mask();
-  if (options.certify) walls = std::make_unique<detail::WallScene>(m);
-  const std::size_t scene_bytes = walls ? walls->bytes() : 0;
-  layout = detail::make_layout(m, choose_lattice(m, options, scene_bytes));
-  const std::size_t points = layout.points();
+void RangeTable::Impl::set_directions() {
   const auto angles = static_cast<std::size_t>(options.angles);
-  const double units = units_for(width, height);
   for (std::size_t a = 0; a < angles; ++a) {
     const double phi =
         2.0 * std::numbers::pi * static_cast<double>(a) / static_cast<double>(angles);
     cos_a.push_back(static_cast<float>(detail::snap_direction(std::cos(phi))));
     sin_a.push_back(static_cast<float>(detail::snap_direction(std::sin(phi))));
   }
-  for (const std::uint32_t cell : layout.cell_of_slot) {
-    point_x.push_back(static_cast<float>(cell % static_cast<std::uint32_t>(width)) + 0.5F);
-    point_y.push_back(static_cast<float>(cell / static_cast<std::uint32_t>(width)) + 0.5F);
-  }
-  entries = points * angles;
-  // Not zero-filled: the tasks below write every entry, and touch the table's pages first in
-  // parallel (the serial fill was 4 % of the certified Intel build's perf samples). On 2 MB
-  // pages, as are the tasks' columns: paired runs of the certified Intel build, 1.47-1.48 s
-  // against 1.98-2.03 s on 4 KB pages (bench_raycast, RangeTable_Build).
-  ranges = detail::allocate_huge<std::uint16_t>(entries);
+}
+
+template <class RowOf>
+void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const float> px,
+                                 std::span<const float> py, int lattice,
+                                 const RowOf& row_of) const {
+  const std::size_t points = px.size();
+  const auto angles = static_cast<std::size_t>(options.angles);
   // One task per 32 directions: each fills a column per direction, then writes its own run of
   // 32 entries (64 bytes) in every point's row, so tasks write disjoint entries, share at most
   // the cache lines where their runs meet, and the result is the same for any thread count.
@@ -108,31 +99,110 @@ void RangeTable::Impl::build() {
     const auto columns = detail::allocate_huge<std::uint16_t>((end - begin) * points);
     detail::SweepScratch scratch;
     for (std::size_t a = begin; a < end; ++a) {
-      detail::sweep_direction(m, point_x, point_y, layout.lattice, cos_a[a], sin_a[a], units,
-                              scratch, {columns.get() + (a - begin) * points, points});
+      detail::sweep_direction(m, px, py, lattice, cos_a[a], sin_a[a], stats.units_per_cell, scratch,
+                              {columns.get() + (a - begin) * points, points});
     }
     for (std::size_t p = 0; p < points; ++p) {
-      for (std::size_t a = begin; a < end; ++a) {
-        ranges[p * angles + a] = columns[(a - begin) * points + p];
-      }
+      std::uint16_t* row = ranges + row_of(p) * angles;
+      for (std::size_t a = begin; a < end; ++a) row[a] = columns[(a - begin) * points + p];
     }
   });
-  const std::size_t uncertified =
-      options.certify
-          ? detail::certify({layout, point_x, point_y, cos_a, sin_a, units, kCertifyTolerance},
-                            {ranges.get(), entries})
-          : 0;
-  stats = {.angles = options.angles,
-           .lattice = layout.lattice,
-           .points = points,
-           .bytes = detail::table_bytes(points, layout.slot_of_block.size(), blocking.size(),
-                                        options.angles) +
-                    scene_bytes,
-           .build_seconds =
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-           .units_per_cell = units,
-           .uncertified =
-               points == 0 ? 0.0 : static_cast<double>(uncertified) / static_cast<double>(entries)};
+}
+
+void RangeTable::Impl::build_tile(std::size_t tile) const {
+  const detail::CellMask m = mask();
+  std::vector<float> px;
+  std::vector<float> py;
+  std::vector<std::uint32_t> slots;
+  const int i0 = tiles->first_i(tile);
+  const int j0 = tiles->first_j(tile);
+  for (int j = j0; j < std::min(j0 + detail::TileSet::kCells, height); ++j) {
+    for (int i = i0; i < std::min(i0 + detail::TileSet::kCells, width); ++i) {
+      if (m.blocks(i, j)) continue;
+      // The whole table's lattice point of this cell (make_layout on a lattice of 1).
+      px.push_back(static_cast<float>(i) + 0.5F);
+      py.push_back(static_cast<float>(j) + 0.5F);
+      slots.push_back(tiles->slot(i, j));
+    }
+  }
+  fill_rows(m, px, py, 1, [&](std::size_t k) { return std::size_t{slots[k]}; });
+}
+
+bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
+  // Rays from sensors whose tiles the budget cannot hold are cast exactly: the scene is needed.
+  walls = std::make_unique<detail::WallScene>(m);
+  constexpr std::size_t kTileCells = std::size_t{detail::TileSet::kCells} * detail::TileSet::kCells;
+  const std::size_t tile_bytes =
+      kTileCells * static_cast<std::size_t>(options.angles) * sizeof(std::uint16_t);
+  const std::size_t tile_count =
+      static_cast<std::size_t>((width + detail::TileSet::kCells - 1) / detail::TileSet::kCells) *
+      static_cast<std::size_t>((height + detail::TileSet::kCells - 1) / detail::TileSet::kCells);
+  // Blocking mask, scene, and per tile a residency byte and a last-use counter.
+  const std::size_t fixed = blocking.size() + walls->bytes() + tile_count * 9;
+  // A sensor's 3 x 3 candidate cells can span 4 tiles; fewer resident tiles would thrash.
+  constexpr std::size_t kMinResident = 4;
+  if (fixed + kMinResident * tile_bytes <= options.memory_budget_bytes) {
+    tiles = detail::TileSet::reserve(width, height, options.angles,
+                                     (options.memory_budget_bytes - fixed) / tile_bytes);
+  }
+  if (!tiles) {
+    walls.reset();
+    return false;
+  }
+  ranges = tiles->ranges();
+  stats.tile_cells = detail::TileSet::kCells;
+  stats.max_resident_tiles = tiles->max_resident();
+  stats.points = detail::count_lattice_points(m, 1);
+  stats.bytes = fixed + tiles->max_resident() * tile_bytes;
+  return true;
+}
+
+void RangeTable::Impl::build() {
+  const auto start = std::chrono::steady_clock::now();
+  const detail::CellMask m = mask();
+  set_directions();
+  stats.angles = options.angles;
+  stats.units_per_cell = units_for(width, height);
+  // Tiles when the whole table on every cell is over budget (and not certified: certifying an
+  // entry reads its lattice neighbours' rows, which may lie in another tile).
+  const bool whole_fits =
+      detail::table_bytes(detail::count_lattice_points(m, 1), blocking.size(), blocking.size(),
+                          options.angles) <= options.memory_budget_bytes;
+  if (options.tiles && !options.certify && !whole_fits && build_tiled(m)) {
+    stats.build_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
+  if (options.certify) walls = std::make_unique<detail::WallScene>(m);
+  const std::size_t scene_bytes = walls ? walls->bytes() : 0;
+  layout = detail::make_layout(m, choose_lattice(m, options, scene_bytes));
+  const std::size_t points = layout.points();
+  for (const std::uint32_t cell : layout.cell_of_slot) {
+    point_x.push_back(static_cast<float>(cell % static_cast<std::uint32_t>(width)) + 0.5F);
+    point_y.push_back(static_cast<float>(cell / static_cast<std::uint32_t>(width)) + 0.5F);
+  }
+  entries = points * static_cast<std::size_t>(options.angles);
+  // Not zero-filled: fill_rows writes every entry, and touches the table's pages first in
+  // parallel (the serial fill was 4 % of the certified Intel build's perf samples). On 2 MB
+  // pages, as are the tasks' columns: paired runs of the certified Intel build, 1.47-1.48 s
+  // against 1.98-2.03 s on 4 KB pages (bench_raycast, RangeTable_Build).
+  whole = detail::allocate_huge<std::uint16_t>(entries);
+  ranges = whole.get();
+  fill_rows(m, point_x, point_y, layout.lattice, [](std::size_t p) { return p; });
+  const std::size_t uncertified = options.certify
+                                      ? detail::certify({layout, point_x, point_y, cos_a, sin_a,
+                                                         stats.units_per_cell, kCertifyTolerance},
+                                                        {ranges, entries})
+                                      : 0;
+  stats.lattice = layout.lattice;
+  stats.points = points;
+  stats.bytes =
+      detail::table_bytes(points, layout.slot_of_block.size(), blocking.size(), options.angles) +
+      scene_bytes;
+  stats.build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.uncertified =
+      points == 0 ? 0.0 : static_cast<double>(uncertified) / static_cast<double>(entries);
 }
 
 RangeTable::RangeTable(const OccupancyGrid& grid, RangeTableOptions options)

@@ -15,6 +15,7 @@
 #include "huge_pages.hpp"
 #include "mote/raycast/range_table.hpp"
 #include "range_table_layout.hpp"
+#include "range_table_tiles.hpp"
 #include "ray_setup.hpp"
 #include "wall_scene.hpp"
 
@@ -75,10 +76,14 @@ struct RangeTable::Impl {
   std::vector<std::uint8_t> blocking;
   /// The exact caster's scene, for the rays of uncertified entries.
   std::unique_ptr<detail::WallScene> walls;
-  detail::TableLayout layout;
-  detail::HugeArray<std::uint16_t> ranges;  ///< ranges[slot * angles + a]
-  std::size_t entries = 0;                  ///< points * angles
-  std::vector<float> cos_a;                 ///< direction of table angle a in the grid frame
+  detail::TableLayout layout;  ///< the lattice of a whole table (empty when tiled)
+  /// Tiles built on first use, when the whole table at a lattice of every cell is over budget:
+  /// then a slot is TileSet::slot of its cell, and `ranges` is the tiles' reservation.
+  std::unique_ptr<detail::TileSet> tiles;
+  detail::HugeArray<std::uint16_t> whole;  ///< the whole table's entries, when not tiled
+  std::uint16_t* ranges = nullptr;         ///< ranges[slot * angles + a]
+  std::size_t entries = 0;                 ///< points * angles
+  std::vector<float> cos_a;                ///< direction of table angle a in the grid frame
   std::vector<float> sin_a;
   std::vector<float> point_x;  ///< lattice point of each slot, in cells
   std::vector<float> point_y;
@@ -88,9 +93,25 @@ struct RangeTable::Impl {
     return {width, height, resolution, blocking.data()};
   }
   void build();
+  /// A tiled table for the budget, or false when the budget or the system will not have one.
+  bool build_tiled(const detail::CellMask& m);
+  void set_directions();
+  /// Sweeps every direction for the points (px, py) (cells) and writes point k's entries to row
+  /// row_of(k) of `ranges`.
+  template <class RowOf>
+  void fill_rows(const detail::CellMask& m, std::span<const float> px, std::span<const float> py,
+                 int lattice, const RowOf& row_of) const;
+  /// Builds a tile's entries (those of its non-blocking cells).
+  void build_tile(std::size_t tile) const;
+  /// Makes resident the tiles that the on-map sensors of `rays` need (caller holds the mutex).
+  void prepare_tiles(const detail::BatchRays& rays, const detail::CellMask& m) const;
   /// The lattice points of the sensor's block and its 8 neighbours, for a sensor at grid frame
   /// point (gx, gy) m in on-map cell (i, j).
   [[nodiscard]] detail::Candidates candidates(int i, int j, double gx, double gy) const noexcept;
+  /// The same for a tiled table (a lattice of every cell): the sensor's cell and its 8
+  /// neighbours that do not block.
+  [[nodiscard]] detail::Candidates tile_candidates(int i, int j, double gx,
+                                                   double gy) const noexcept;
   /// Which entries answer for each beam of one sensor, at table angle index
   /// heading + beam_index[b] (fractional, in [0, 2 * angles)). Inlined into cast_chunk: as a
   /// call the plain table's queries ran about 5 % slower (bench_raycast, paired runs).

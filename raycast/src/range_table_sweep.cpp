@@ -33,14 +33,17 @@ LineFamily family_for(int width, int height, double dx, double dy, double spacin
   return {dx, dy, lo, spacing, static_cast<int>(std::floor((hi - lo) / spacing)) + 2};
 }
 
-/// Sorts the points onto their nearest lines (a counting sort: stable in slot order).
+/// Sorts the points onto their nearest lines (a counting sort: stable in slot order), over the
+/// lines [s.first_line, s.first_line + s.line_start.size() - 1) that hold points only: a tile's
+/// few hundred lines, not the whole map's.
 void bucket_points(const LineFamily& f, std::span<const float> px, std::span<const float> py,
                    SweepScratch& s) {
   const std::size_t n = px.size();
   s.line_of.resize(n);
   s.along.resize(n);
-  s.line_start.assign(static_cast<std::size_t>(f.count) + 1, 0);
   const double inv = 1.0 / f.spacing;
+  int lo = f.count;
+  int hi = -1;
   for (std::size_t p = 0; p < n; ++p) {
     const double x = px[p];
     const double y = py[p];
@@ -48,13 +51,20 @@ void bucket_points(const LineFamily& f, std::span<const float> px, std::span<con
     const int l = static_cast<int>((-f.dy * x + f.dx * y - f.s_min) * inv + 0.5);
     s.line_of[p] = l;
     s.along[p] = f.dx * x + f.dy * y;
-    ++s.line_start[static_cast<std::size_t>(l) + 1];
+    lo = std::min(lo, l);
+    hi = std::max(hi, l);
+  }
+  s.first_line = n == 0 ? 0 : lo;
+  s.line_start.assign(n == 0 ? 1 : static_cast<std::size_t>(hi - lo) + 2, 0);
+  for (std::size_t p = 0; p < n; ++p) {
+    ++s.line_start[static_cast<std::size_t>(s.line_of[p] - s.first_line) + 1];
   }
   for (std::size_t l = 1; l < s.line_start.size(); ++l) s.line_start[l] += s.line_start[l - 1];
   s.order.resize(n);
   std::vector<std::uint32_t> fill(s.line_start.begin(), s.line_start.end() - 1);
   for (std::size_t p = 0; p < n; ++p) {
-    s.order[fill[static_cast<std::size_t>(s.line_of[p])]++] = static_cast<std::uint32_t>(p);
+    s.order[fill[static_cast<std::size_t>(s.line_of[p] - s.first_line)]++] =
+        static_cast<std::uint32_t>(p);
   }
 }
 
@@ -113,9 +123,10 @@ void sweep_direction(const CellMask& mask, std::span<const float> px, std::span<
                      SweepScratch& scratch, std::span<std::uint16_t> column) {
   const LineFamily f = family_for(mask.width, mask.height, dx, dy, kLineSpacing * lattice);
   bucket_points(f, px, py, scratch);
-  for (int l = 0; l < f.count; ++l) {
-    const std::uint32_t begin = scratch.line_start[static_cast<std::size_t>(l)];
-    const std::uint32_t end = scratch.line_start[static_cast<std::size_t>(l) + 1];
+  for (std::size_t line = 0; line + 1 < scratch.line_start.size(); ++line) {
+    const int l = scratch.first_line + static_cast<int>(line);
+    const std::uint32_t begin = scratch.line_start[line];
+    const std::uint32_t end = scratch.line_start[line + 1];
     if (begin == end) continue;
     double u_first = kInf;
     double u_last = -kInf;

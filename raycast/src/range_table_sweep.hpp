@@ -20,7 +20,8 @@ inline constexpr double kLineSpacing = 0.25;
 
 /// Reused between directions by one build task.
 struct SweepScratch {
-  std::vector<std::uint32_t> line_start;  ///< points of line l: order[line_start[l], [l + 1])
+  int first_line = 0;                     ///< the first line holding a point
+  std::vector<std::uint32_t> line_start;  ///< points of line first_line + k: order[[k], [k + 1])
   std::vector<std::uint32_t> order;       ///< slots bucketed by line
   std::vector<int> line_of;               ///< nearest line of each slot
   std::vector<double> along;              ///< position of each slot along its line

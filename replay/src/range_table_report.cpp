@@ -41,6 +41,12 @@ void print_range_table(std::ostream& out, const RangeTableSummary& s) {
            std::to_string(t.points) + " points");
   line(out, "  memory", fixed(static_cast<double>(t.bytes) / 1048576.0, 1) + " MB");
   line(out, "  build", fixed(t.build_seconds, 3) + " s");
+  if (t.tile_cells > 0) {
+    line(out, "  tiles",
+         std::to_string(t.tile_cells) + " x " + std::to_string(t.tile_cells) +
+             " cells, built on first use, at most " + std::to_string(t.max_resident_tiles) +
+             " held (the whole table is over budget); the check below draws from 8 of them");
+  }
   if (s.certified) {
     line(out, "  certified",
          fixed(100.0 * (1.0 - t.uncertified), 2) + " % of entries; the rays of the other " +
@@ -64,6 +70,10 @@ void write_range_table_json(JsonWriter& json, const RangeTableSummary& s) {
   json.member("points", std::uint64_t{t.points}).member("bytes", std::uint64_t{t.bytes});
   json.member("build_s", t.build_seconds).member("unknown_blocks", s.unknown_blocks);
   json.member("certified", s.certified);
+  if (t.tile_cells > 0) {
+    json.member("tile_cells", t.tile_cells)
+        .member("max_resident_tiles", std::uint64_t{t.max_resident_tiles});
+  }
   if (s.certified) json.member("uncertified_entries", t.uncertified);
   json.key("vs_embree").begin_object();
   json.member("rays", std::uint64_t{a.rays});

@@ -30,6 +30,11 @@ struct RangeTableOptions {
   /// interpolating between the two table directions around the ray. Off: every ray reads the
   /// table, at the nearest direction, fastest and least accurate (BENCHMARKS.md, "Range table").
   bool certify = false;
+  /// When the table on every cell is over budget (and not certified): build it in tiles of
+  /// 64 x 64 cells on first use instead of coarsening the lattice, holding as many as the
+  /// budget allows and evicting the least recently used. Linux only; elsewhere, or when the
+  /// budget holds fewer than 4 tiles, the lattice coarsens.
+  bool tiles = true;
 };
 
 /// What the table cost and how it is laid out.
@@ -43,6 +48,11 @@ struct RangeTableStats {
   /// Share of entries that cannot vouch for their rays within a cell (a corner or gap nearby, a
   /// jump between neighbouring angles): their rays are cast exactly, with Embree.
   double uncertified = 0.0;
+  /// 0: the whole table is built. Otherwise tiles of this many cells a side are built on first
+  /// use (a lattice of every cell), at most max_resident_tiles at once; `bytes` counts them all
+  /// and build_seconds the part built up front.
+  int tile_cells = 0;
+  std::size_t max_resident_tiles = 0;
 };
 
 /// A ray caster answering from the table, with the RayCaster contract. A sensor inside or on the
@@ -62,14 +72,28 @@ class RangeTable {
   RangeTable(const RangeTable&) = delete;
   RangeTable& operator=(const RangeTable&) = delete;
 
-  /// Same contract as RayCaster::cast.
+  /// Same contract as RayCaster::cast. A tiled table first builds the tiles the batch's
+  /// sensors need (evicting others when the budget is full); casts on one table then run one at
+  /// a time.
   void cast(const RayBatch& batch, std::span<float> ranges) const;
+  /// For callers that cast one set of poses in concurrent parts (the beam model weighs
+  /// particles in chunks on several threads): prepare(all of them) from one thread, then
+  /// cast_prepared(each part) from any, which reads the table without building or evicting
+  /// (rays of sensors whose tiles are not resident are cast exactly) and runs concurrently.
+  /// Which tiles are resident then depends on the whole set, not on the order the parts run
+  /// in. Without tiles prepare does nothing and cast_prepared is cast.
+  void prepare(const RayBatch& batch) const;
+  void cast_prepared(const RayBatch& batch, std::span<float> ranges) const;
   /// Same contract as RayCaster::cast_one.
   [[nodiscard]] float cast_one(Point2 origin, double angle, float max_range) const;
 
   [[nodiscard]] const RangeTableStats& stats() const noexcept;
+  /// How many tiles casts have built so far (0 when the whole table is built up front).
+  [[nodiscard]] std::size_t tiles_built() const;
 
  private:
+  enum class Tiles { kBuild, kRead };
+  void cast_batch(const RayBatch& batch, std::span<float> ranges, Tiles mode) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
