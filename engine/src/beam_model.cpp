@@ -24,6 +24,16 @@ void BeamModel::expected_ranges(const RayBatch& batch, std::span<float> ranges) 
   }
 }
 
+void BeamModel::prepare(const BeamSet& beams, const ParticleView& particles) const {
+  if (!table_ || table_->stats().tile_cells == 0) return;
+  table_->prepare(RayBatch{.x = {particles.x, particles.count},
+                           .y = {particles.y, particles.count},
+                           .theta = {particles.theta, particles.count},
+                           .beam_angles = beams.angle,
+                           .sensor_offset = beams.sensor_pose,
+                           .max_range = beams.range_max});
+}
+
 void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
                       std::size_t end) const {
   const std::size_t count = end - begin;
@@ -38,7 +48,11 @@ void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::
                        .beam_angles = beams.angle,
                        .sensor_offset = beams.sensor_pose,
                        .max_range = beams.range_max};
-  expected_ranges(batch, expected);
+  if (table_) {
+    table_->cast_prepared(batch, expected);  // prepare() built the tiles, if any
+  } else {
+    exact_->cast(batch, expected);
+  }
 
   add_beam_log_likelihoods(beams.range, beams.range_max, expected, params_,
                            {particles.logw + begin, count});

@@ -181,6 +181,7 @@ void Localizer::Impl::weigh() {
   std::visit(
       [&](auto& model) {
         if constexpr (requires { model.prepare(beams); }) model.prepare(beams);
+        if constexpr (requires { model.prepare(beams, into); }) model.prepare(beams, into);
         weigh_scan(model, beams, into, config.grain);
       },
       *sensor);

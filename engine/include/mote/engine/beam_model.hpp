@@ -35,6 +35,12 @@ class BeamModel {
   BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
             const std::optional<RangeTableOptions>& table = std::nullopt);
 
+  /// With a range table built in tiles: makes resident the tiles the particles' sensors need
+  /// (RangeTable::prepare), so that weigh() on concurrent chunks only reads the table and the
+  /// result does not depend on the order they run in. Call before weigh() from one thread;
+  /// otherwise a no-op.
+  void prepare(const BeamSet& beams, const ParticleView& particles) const;
+
   /// Adds tau * log p(z | x_i) to particles.logw[i] for i in [begin, end). Reentrant.
   void weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
              std::size_t end) const;
