@@ -293,8 +293,8 @@ void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::C
       for (std::size_t b = 0; b < beams; ++b) {
         out[b] = detail::walk_grid(m, m.prepare(rays.ray(s, b)), rays.max_range());
       }
-    } else if (tiles && !tiles->covers(i, j)) {
-      // A tile the budget could not hold for this cast (tiled tables always have `exact`).
+    } else if (exact != nullptr && tiles && !tiles->covers(i, j)) {
+      // A tile the budget could not hold for this cast (a tiled table always passes `exact`).
       for (std::size_t b = 0; b < beams; ++b) exact->add(rays.ray(s, b), p * beams + b);
     } else {
       choose(tiles ? tile_candidates(i, j, s.ox, s.oy) : candidates(i, j, s.ox, s.oy),

@@ -45,7 +45,7 @@ void print_range_table(std::ostream& out, const RangeTableSummary& s) {
     line(out, "  tiles",
          std::to_string(t.tile_cells) + " x " + std::to_string(t.tile_cells) +
              " cells, built on first use, at most " + std::to_string(t.max_resident_tiles) +
-             " held (the whole table is over budget); the check below draws from 8 of them");
+             " held (the whole table is over budget); the check below draws from up to 8 of them");
   }
   if (s.certified) {
     line(out, "  certified",

@@ -204,6 +204,13 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
     EXPECT_NE(o.out.find(text), std::string::npos) << text << " in\n" << o.out;
   }
   EXPECT_EQ(o.out.find("certified"), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("built on first use"), std::string::npos) << o.out;
+  // 12.5 MB on every cell at 64 angles: 3 MB tiles it.
+  const Outcome tiled =
+      mote("info --map '" + map.string() + "' --range-table-angles 64 --range-table-budget-mb 3");
+  ASSERT_EQ(tiled.status, 0) << tiled.err;
+  EXPECT_NE(tiled.out.find("64 x 64 cells, built on first use"), std::string::npos) << tiled.out;
+  EXPECT_NE(tiled.out.find("% within 1 cell"), std::string::npos) << tiled.out;
   const Outcome certified =
       mote("info --map '" + map.string() + "' --range-table-angles 64 --certified");
   ASSERT_EQ(certified.status, 0) << certified.err;
