@@ -88,7 +88,7 @@ void RangeTable::Impl::set_directions() {
 
 template <class RowOf>
 void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const float> px,
-                                 std::span<const float> py, int lattice,
+                                 std::span<const float> py, int lattice, std::uint16_t* out,
                                  const RowOf& row_of) const {
   const std::size_t points = px.size();
   const auto angles = static_cast<std::size_t>(options.angles);
@@ -103,7 +103,7 @@ void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const floa
                               {columns.get() + (a - begin) * points, points});
     }
     for (std::size_t p = 0; p < points; ++p) {
-      std::uint16_t* row = ranges + row_of(p) * angles;
+      std::uint16_t* row = out + row_of(p) * angles;
       for (std::size_t a = begin; a < end; ++a) row[a] = columns[(a - begin) * points + p];
     }
   });
@@ -111,26 +111,47 @@ void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const floa
 
 void RangeTable::Impl::build_tile(std::size_t tile) const {
   const detail::CellMask m = mask();
+  // The tile's cells and, certified, a ring of one cell around it: certifying an entry compares
+  // its row with its 8 neighbours' rows, and some of them lie in the next tile.
+  constexpr int kEdge = detail::TileSet::kCells;
+  const int halo = options.certify ? 1 : 0;
+  const int ti = tiles->first_i(tile);
+  const int tj = tiles->first_j(tile);
+  const int i0 = std::max(ti - halo, 0);
+  const int j0 = std::max(tj - halo, 0);
+  const int w = std::min(ti + kEdge + halo, width) - i0;
+  const int h = std::min(tj + kEdge + halo, height) - j0;
+  std::vector<std::uint8_t> cells;  // the window's blocking cells, for its own lattice
+  for (int j = j0; j < j0 + h; ++j) {
+    for (int i = i0; i < i0 + w; ++i) cells.push_back(m.blocks(i, j) ? 1 : 0);
+  }
+  const detail::TableLayout window =
+      detail::make_layout({w, h, m.resolution, cells.data()}, /*lattice=*/1);
   std::vector<float> px;
   std::vector<float> py;
-  std::vector<std::uint32_t> slots;
-  const int i0 = tiles->first_i(tile);
-  const int j0 = tiles->first_j(tile);
-  for (int j = j0; j < std::min(j0 + detail::TileSet::kCells, height); ++j) {
-    for (int i = i0; i < std::min(i0 + detail::TileSet::kCells, width); ++i) {
-      if (m.blocks(i, j)) continue;
-      // The whole table's lattice point of this cell (make_layout on a lattice of 1).
-      px.push_back(static_cast<float>(i) + 0.5F);
-      py.push_back(static_cast<float>(j) + 0.5F);
-      slots.push_back(tiles->slot(i, j));
-    }
+  for (const std::uint32_t cell : window.cell_of_slot) {
+    // The whole table's lattice point of this cell (make_layout on a lattice of 1).
+    px.push_back(static_cast<float>(i0 + static_cast<int>(cell % std::uint32_t(w))) + 0.5F);
+    py.push_back(static_cast<float>(j0 + static_cast<int>(cell / std::uint32_t(w))) + 0.5F);
   }
-  fill_rows(m, px, py, 1, [&](std::size_t k) { return std::size_t{slots[k]}; });
+  const auto angles = static_cast<std::size_t>(options.angles);
+  const auto rows = detail::allocate_huge<std::uint16_t>(px.size() * angles);
+  fill_rows(m, px, py, 1, rows.get(), [](std::size_t p) { return p; });
+  if (options.certify) {
+    detail::certify({window, px, py, cos_a, sin_a, stats.units_per_cell, kCertifyTolerance},
+                    {rows.get(), px.size() * angles});
+  }
+  for (std::size_t p = 0; p < px.size(); ++p) {
+    const auto i = static_cast<int>(px[p]);
+    const auto j = static_cast<int>(py[p]);
+    if (i < ti || j < tj || i >= ti + kEdge || j >= tj + kEdge) continue;  // the halo
+    std::copy_n(rows.get() + p * angles, angles, ranges + std::size_t{tiles->slot(i, j)} * angles);
+  }
 }
 
 bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
   // Rays from sensors whose tiles the budget cannot hold are cast exactly: the scene is needed.
-  walls = std::make_unique<detail::WallScene>(m);
+  if (!walls) walls = std::make_unique<detail::WallScene>(m);
   constexpr std::size_t kTileCells = std::size_t{detail::TileSet::kCells} * detail::TileSet::kCells;
   const std::size_t tile_bytes =
       kTileCells * static_cast<std::size_t>(options.angles) * sizeof(std::uint16_t);
@@ -146,7 +167,7 @@ bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
                                      (options.memory_budget_bytes - fixed) / tile_bytes);
   }
   if (!tiles) {
-    walls.reset();
+    if (!options.certify) walls.reset();
     return false;
   }
   ranges = tiles->ranges();
@@ -163,18 +184,18 @@ void RangeTable::Impl::build() {
   set_directions();
   stats.angles = options.angles;
   stats.units_per_cell = units_for(width, height);
-  // Tiles when the whole table on every cell is over budget (and not certified: certifying an
-  // entry reads its lattice neighbours' rows, which may lie in another tile).
-  const bool whole_fits =
-      detail::table_bytes(detail::count_lattice_points(m, 1), blocking.size(), blocking.size(),
-                          options.angles) <= options.memory_budget_bytes;
-  if (options.tiles && !options.certify && !whole_fits && build_tiled(m)) {
+  if (options.certify) walls = std::make_unique<detail::WallScene>(m);
+  const std::size_t scene_bytes = walls ? walls->bytes() : 0;
+  // Tiles when the whole table on every cell is over budget.
+  const bool whole_fits = detail::table_bytes(detail::count_lattice_points(m, 1), blocking.size(),
+                                              blocking.size(), options.angles) +
+                              scene_bytes <=
+                          options.memory_budget_bytes;
+  if (options.tiles && !whole_fits && build_tiled(m)) {
     stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
-  if (options.certify) walls = std::make_unique<detail::WallScene>(m);
-  const std::size_t scene_bytes = walls ? walls->bytes() : 0;
   layout = detail::make_layout(m, choose_lattice(m, options, scene_bytes));
   const std::size_t points = layout.points();
   for (const std::uint32_t cell : layout.cell_of_slot) {
@@ -188,7 +209,7 @@ void RangeTable::Impl::build() {
   // against 1.98-2.03 s on 4 KB pages (bench_raycast, RangeTable_Build).
   whole = detail::allocate_huge<std::uint16_t>(entries);
   ranges = whole.get();
-  fill_rows(m, point_x, point_y, layout.lattice, [](std::size_t p) { return p; });
+  fill_rows(m, point_x, point_y, layout.lattice, ranges, [](std::size_t p) { return p; });
   const std::size_t uncertified = options.certify
                                       ? detail::certify({layout, point_x, point_y, cos_a, sin_a,
                                                          stats.units_per_cell, kCertifyTolerance},

@@ -47,7 +47,11 @@ void print_range_table(std::ostream& out, const RangeTableSummary& s) {
              " cells, built on first use, at most " + std::to_string(t.max_resident_tiles) +
              " held (the whole table is over budget); the check below draws from up to 8 of them");
   }
-  if (s.certified) {
+  if (s.certified && t.tile_cells > 0) {
+    line(out, "  certified",
+         "tile by tile as each is built; the rays of uncertified entries are cast exactly, with "
+         "Embree");
+  } else if (s.certified) {
     line(out, "  certified",
          fixed(100.0 * (1.0 - t.uncertified), 2) + " % of entries; the rays of the other " +
              fixed(100.0 * t.uncertified, 2) + " % are cast exactly, with Embree");
@@ -74,7 +78,7 @@ void write_range_table_json(JsonWriter& json, const RangeTableSummary& s) {
     json.member("tile_cells", t.tile_cells)
         .member("max_resident_tiles", std::uint64_t{t.max_resident_tiles});
   }
-  if (s.certified) json.member("uncertified_entries", t.uncertified);
+  if (s.certified && t.tile_cells == 0) json.member("uncertified_entries", t.uncertified);
   json.key("vs_embree").begin_object();
   json.member("rays", std::uint64_t{a.rays});
   json.member("max_range_m", static_cast<double>(kRangeTableCheckRange));

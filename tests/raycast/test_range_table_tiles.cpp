@@ -23,15 +23,16 @@ constexpr float kMaxRange = 30.0F;
 
 /// Intel at 64 angles: the whole table on every cell takes about 24 MB, so an 8 MB budget
 /// tiles it (a tile is 64 x 64 cells x 64 angles, 512 KB).
-RangeTableOptions tiled_options() {
+RangeTableOptions tiled_options(bool certify = false) {
   RangeTableOptions o;
   o.angles = 64;
   o.memory_budget_bytes = std::size_t{8} << 20U;
+  o.certify = certify;
   return o;
 }
 
-RangeTableOptions whole_options() {
-  RangeTableOptions o = tiled_options();
+RangeTableOptions whole_options(bool certify = false) {
+  RangeTableOptions o = tiled_options(certify);
   o.memory_budget_bytes = std::size_t{1} << 30U;
   return o;
 }
@@ -65,11 +66,11 @@ std::vector<float> cast(const RangeTable& table, const test::Scatter& s) {
   return out;
 }
 
-TEST(RangeTableTiles, ReadAsTheWholeTableThroughBuildsAndEvictions) {
+void expect_read_as_the_whole_table(bool certify) {
   MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
   const OccupancyGrid grid = load_map(path);
-  const RangeTable whole(grid, whole_options());
-  const RangeTable tiled(grid, tiled_options());
+  const RangeTable whole(grid, whole_options(certify));
+  const RangeTable tiled(grid, tiled_options(certify));
   ASSERT_EQ(whole.stats().tile_cells, 0);
   ASSERT_EQ(tiled.stats().tile_cells, 64);
   ASSERT_EQ(tiled.stats().points, whole.stats().points);
@@ -85,7 +86,8 @@ TEST(RangeTableTiles, ReadAsTheWholeTableThroughBuildsAndEvictions) {
     ASSERT_GT(s.x.size(), 10U);
     EXPECT_EQ(cast(tiled, s), cast(whole, s)) << "cloud around pose " << c;
   }
-  std::cout << "Intel tiled: " << tiled.stats().max_resident_tiles << " tiles resident at most, "
+  std::cout << "Intel tiled" << (certify ? ", certified: " : ": ")
+            << tiled.stats().max_resident_tiles << " tiles resident at most, "
             << tiled.tiles_built() << " built for " << centres.size() << " clouds\n";
   EXPECT_GT(tiled.tiles_built(), tiled.stats().max_resident_tiles) << "no tile was evicted";
   // Single rays build their tiles too.
@@ -94,6 +96,16 @@ TEST(RangeTableTiles, ReadAsTheWholeTableThroughBuildsAndEvictions) {
     EXPECT_EQ(tiled.cast_one({all.x[p], all.y[p]}, angle, kMaxRange),
               whole.cast_one({all.x[p], all.y[p]}, angle, kMaxRange));
   }
+}
+
+TEST(RangeTableTiles, ReadAsTheWholeTableThroughBuildsAndEvictions) {
+  expect_read_as_the_whole_table(false);
+}
+
+/// Each tile is certified with a ring of one cell around it (an entry's verdict compares its
+/// row with its neighbours'), so its verdicts are the whole certified table's.
+TEST(RangeTableTiles, CertifiedReadAsTheWholeCertifiedTable) {
+  expect_read_as_the_whole_table(true);
 }
 
 TEST(RangeTableTiles, SensorsInTilesTheBudgetCannotHoldAreCastExactly) {

@@ -30,10 +30,10 @@ struct RangeTableOptions {
   /// interpolating between the two table directions around the ray. Off: every ray reads the
   /// table, at the nearest direction, fastest and least accurate (BENCHMARKS.md, "Range table").
   bool certify = false;
-  /// When the table on every cell is over budget (and not certified): build it in tiles of
-  /// 64 x 64 cells on first use instead of coarsening the lattice, holding as many as the
-  /// budget allows and evicting the least recently used. Linux only; elsewhere, or when the
-  /// budget holds fewer than 4 tiles, the lattice coarsens.
+  /// When the table on every cell is over budget: build it in tiles of 64 x 64 cells on first
+  /// use (each certified as it is built, when certify is on) instead of coarsening the
+  /// lattice, holding as many as the budget allows and evicting the least recently used.
+  /// Linux only; elsewhere, or when the budget holds fewer than 4 tiles, the lattice coarsens.
   bool tiles = true;
 };
 
@@ -46,7 +46,8 @@ struct RangeTableStats {
   double build_seconds = 0.0;   ///< wall clock of the sweep
   double units_per_cell = 8.0;  ///< fixed-point range units per cell
   /// Share of entries that cannot vouch for their rays within a cell (a corner or gap nearby, a
-  /// jump between neighbouring angles): their rays are cast exactly, with Embree.
+  /// jump between neighbouring angles): their rays are cast exactly, with Embree. Not known
+  /// (0) for a tiled table, whose tiles are certified as they are built.
   double uncertified = 0.0;
   /// 0: the whole table is built. Otherwise tiles of this many cells a side are built on first
   /// use (a lattice of every cell), at most max_resident_tiles at once; `bytes` counts them all
