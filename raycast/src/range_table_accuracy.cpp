@@ -14,8 +14,8 @@ namespace mote {
 namespace {
 
 /// A tiled table's rays start in a few tiles only, so that measuring builds no more of them
-/// than the budget holds (kMaxTiles at most): the free cells of tiles drawn by the free cells
-/// the generator picks. Empty (every free cell) for a whole table.
+/// than the budget holds (kMaxTiles at most): the free cells, off the tiles' borders, of tiles
+/// drawn by the free cells the generator picks. Empty (every free cell) for a whole table.
 std::vector<std::uint32_t> origins_pool(const RangeTable& table, const OccupancyGrid& grid,
                                         std::mt19937_64& rng) {
   const RangeTableStats& s = table.stats();
@@ -33,8 +33,16 @@ std::vector<std::uint32_t> origins_pool(const RangeTable& table, const Occupancy
     const auto t = tile_of(free[rng() % free.size()]);
     if (std::find(tiles.begin(), tiles.end(), t) == tiles.end()) tiles.push_back(t);
   }
+  // Not the tiles' border cells: a ray from one reads its neighbour tile too, which the budget
+  // may not hold beside the drawn ones (each such ray would build and evict a tile).
+  const auto border = [&](std::uint32_t cell) {
+    const std::uint32_t i = cell % w % edge;
+    const std::uint32_t j = cell / w % edge;
+    return i == 0 || j == 0 || i + 1 == edge || j + 1 == edge;
+  };
   std::vector<std::uint32_t> pool;
   for (const std::uint32_t cell : free) {
+    if (border(cell)) continue;
     if (std::find(tiles.begin(), tiles.end(), tile_of(cell)) != tiles.end()) pool.push_back(cell);
   }
   return pool;
