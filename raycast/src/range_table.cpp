@@ -86,10 +86,8 @@ void RangeTable::Impl::set_directions() {
   }
 }
 
-template <class RowOf>
 void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const float> px,
-                                 std::span<const float> py, int lattice, std::uint16_t* out,
-                                 const RowOf& row_of) const {
+                                 std::span<const float> py, int lattice, std::uint16_t* out) const {
   const std::size_t points = px.size();
   const auto angles = static_cast<std::size_t>(options.angles);
   // One task per 32 directions: each fills a column per direction, then writes its own run of
@@ -103,7 +101,7 @@ void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const floa
                               {columns.get() + (a - begin) * points, points});
     }
     for (std::size_t p = 0; p < points; ++p) {
-      std::uint16_t* row = out + row_of(p) * angles;
+      std::uint16_t* row = out + p * angles;
       for (std::size_t a = begin; a < end; ++a) row[a] = columns[(a - begin) * points + p];
     }
   });
@@ -136,7 +134,7 @@ void RangeTable::Impl::build_tile(std::size_t tile) const {
   }
   const auto angles = static_cast<std::size_t>(options.angles);
   const auto rows = detail::allocate_huge<std::uint16_t>(px.size() * angles);
-  fill_rows(m, px, py, 1, rows.get(), [](std::size_t p) { return p; });
+  fill_rows(m, px, py, 1, rows.get());
   if (options.certify) {
     detail::certify({window, px, py, cos_a, sin_a, stats.units_per_cell, kCertifyTolerance},
                     {rows.get(), px.size() * angles});
@@ -209,7 +207,7 @@ void RangeTable::Impl::build() {
   // against 1.98-2.03 s on 4 KB pages (bench_raycast, RangeTable_Build).
   whole = detail::allocate_huge<std::uint16_t>(entries);
   ranges = whole.get();
-  fill_rows(m, point_x, point_y, layout.lattice, ranges, [](std::size_t p) { return p; });
+  fill_rows(m, point_x, point_y, layout.lattice, ranges);
   const std::size_t uncertified = options.certify
                                       ? detail::certify({layout, point_x, point_y, cos_a, sin_a,
                                                          stats.units_per_cell, kCertifyTolerance},

@@ -97,10 +97,9 @@ struct RangeTable::Impl {
   bool build_tiled(const detail::CellMask& m);
   void set_directions();
   /// Sweeps every direction for the points (px, py) (cells) and writes point k's entries to row
-  /// row_of(k) of `out` (rows of options.angles entries).
-  template <class RowOf>
+  /// k of `out` (rows of options.angles entries).
   void fill_rows(const detail::CellMask& m, std::span<const float> px, std::span<const float> py,
-                 int lattice, std::uint16_t* out, const RowOf& row_of) const;
+                 int lattice, std::uint16_t* out) const;
   /// Builds a tile's entries (those of its non-blocking cells), certified when the table is.
   void build_tile(std::size_t tile) const;
   /// Makes resident the tiles that the on-map sensors of `rays` need (caller holds the mutex).
