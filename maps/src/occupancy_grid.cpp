@@ -95,7 +95,10 @@ Point2 OccupancyGrid::cell_center(CellIndex c) const noexcept {
 }
 
 Point2 OccupancyGrid::free_point(std::size_t k, double u, double v) const noexcept {
-  const std::uint32_t cell = free_[k];
+  return point_in_cell(free_[k], u, v);
+}
+
+Point2 OccupancyGrid::point_in_cell(std::uint32_t cell, double u, double v) const noexcept {
   const auto w = static_cast<std::uint32_t>(width_);
   const double gi = static_cast<double>(cell % w) + u;
   const double gj = static_cast<double>(cell / w) + v;

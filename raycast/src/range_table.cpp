@@ -156,8 +156,8 @@ bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
   const std::size_t tile_count =
       static_cast<std::size_t>((width + detail::TileSet::kCells - 1) / detail::TileSet::kCells) *
       static_cast<std::size_t>((height + detail::TileSet::kCells - 1) / detail::TileSet::kCells);
-  // Blocking mask, scene, and per tile a residency byte and a last-use counter.
-  const std::size_t fixed = blocking.size() + walls->bytes() + tile_count * 9;
+  const std::size_t fixed =
+      blocking.size() + walls->bytes() + tile_count * detail::TileSet::kBookkeepingBytes;
   // A sensor's 3 x 3 candidate cells can span 4 tiles; fewer resident tiles would thrash.
   constexpr std::size_t kMinResident = 4;
   if (fixed + kMinResident * tile_bytes <= options.memory_budget_bytes) {

@@ -69,9 +69,7 @@ RangeTableAccuracy measure_range_table(const RangeTable& table, const RayCaster&
     // replaced, so the figures measured before (BENCHMARKS.md) stay the same.
     const double v = unit(rng);
     const double u = unit(rng);
-    const auto w = static_cast<std::uint32_t>(grid.width());
-    const Point2 o = grid.to_map_frame({(static_cast<double>(start % w) + u) * grid.resolution(),
-                                        (static_cast<double>(start / w) + v) * grid.resolution()});
+    const Point2 o = grid.point_in_cell(start, u, v);
     const double angle = (2.0 * unit(rng) - 1.0) * std::numbers::pi;
     const double e = std::abs(double(table.cast_one(o, angle, max_range)) -
                               double(exact.cast_one(o, angle, max_range))) /

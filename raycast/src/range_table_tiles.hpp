@@ -26,6 +26,10 @@ class TileSet {
  public:
   /// Tile edge (cells): 64 x 64 cells at 512 angles is 4 MB, built in tens of milliseconds.
   static constexpr int kCells = 64;
+  using Residency = std::uint8_t;
+  using UseStamp = std::uint64_t;
+  /// Bookkeeping held for every tile, resident or not: a residency flag and a last-use stamp.
+  static constexpr std::size_t kBookkeepingBytes = sizeof(Residency) + sizeof(UseStamp);
 
   /// Reserves the address space. nullptr (no tiles: the caller coarsens the lattice instead)
   /// when the system will not reserve it or slots would not fit 32 bits.
@@ -101,8 +105,8 @@ class TileSet {
   std::size_t max_resident_ = 0;
   std::uint16_t* ranges_ = nullptr;
   std::size_t reserved_bytes_ = 0;
-  std::vector<std::uint8_t> resident_;
-  std::vector<std::uint64_t> last_used_;
+  std::vector<Residency> resident_;
+  std::vector<UseStamp> last_used_;
   std::uint64_t casts_ = 0;
   std::size_t resident_count_ = 0;
   std::size_t built_ = 0;

@@ -65,6 +65,8 @@ class OccupancyGrid final : public FreeSpace {
   [[nodiscard]] CellIndex world_to_cell(Point2 world) const noexcept;
   /// Centre of a cell in the map frame.
   [[nodiscard]] Point2 cell_center(CellIndex c) const noexcept;
+  /// The map frame point at fractions (u, v) in [0, 1) across the cell of linear index `cell`.
+  [[nodiscard]] Point2 point_in_cell(std::uint32_t cell, double u, double v) const noexcept;
 
   // FreeSpace
   [[nodiscard]] std::size_t free_cell_count() const noexcept override { return free_.size(); }
