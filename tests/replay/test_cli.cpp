@@ -22,6 +22,23 @@
 namespace mote_cli_test {
 namespace {
 
+const fs::path kFloorplan = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
+
+/// Simulates `seconds` of the floor plan into dir (sim.clf, sim.gt.tum).
+void simulate_floorplan(const fs::path& dir, int seconds, int seed) {
+  const Outcome sim =
+      mote("simulate --map '" + kFloorplan.string() + "' --out '" + dir.string() + "' --seconds " +
+           std::to_string(seconds) + " --seed " + std::to_string(seed));
+  ASSERT_EQ(sim.status, 0) << sim.err;
+}
+
+/// A replay of dir's simulated log against its ground truth, writing to dir/out.
+std::string replay_simulated(const fs::path& dir) {
+  return "replay --map '" + kFloorplan.string() + "' --log '" + (dir / "sim.clf").string() +
+         "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" + (dir / "out").string() +
+         "'";
+}
+
 TEST(Cli, HelpDocumentsEveryCommandAndFlag) {
   const Outcome top = mote("--help");
   EXPECT_EQ(top.status, 0);
@@ -91,15 +108,8 @@ TEST(Cli, BadInputExitsWithOneNamingTheFile) {
 
 TEST(Cli, SimulateThenReplayWritesTheOutputs) {
   const fs::path dir = scratch("sim");
-  const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
-  ASSERT_EQ(mote("simulate --map '" + map.string() + "' --out '" + dir.string() +
-                 "' --seconds 15 --seed 3")
-                .status,
-            0);
-  const Outcome o =
-      mote("replay --map '" + map.string() + "' --log '" + (dir / "sim.clf").string() +
-           "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" +
-           (dir / "out").string() + "' --particles 2000 --profile");
+  ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
+  const Outcome o = mote(replay_simulated(dir) + " --particles 2000 --profile");
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_NE(o.out.find("ATE RMSE"), std::string::npos);
   EXPECT_NE(o.out.find("ns/particle"), std::string::npos);  // the --profile phase table
@@ -116,21 +126,17 @@ TEST(Cli, SimulateThenReplayWritesTheOutputs) {
 // and when the filter recovered, and the laser range it used (recorded by ROBOTLASER1).
 TEST(Cli, KidnapThenReplayReportsRecovery) {
   const fs::path dir = scratch("kidnap");
-  const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
-  ASSERT_EQ(mote("simulate --map '" + map.string() + "' --out '" + dir.string() +
-                 "' --seconds 20 --seed 4")
-                .status,
-            0);
+  ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 20, 4));
   const Outcome k = mote("kidnap --log '" + (dir / "sim.clf").string() + "' --reference '" +
                          (dir / "sim.gt.tum").string() + "' --out '" + (dir / "k").string() + "'");
   ASSERT_EQ(k.status, 0) << k.err;
   const auto at = k.out.find("splice stamp ");
   ASSERT_NE(at, std::string::npos) << k.out;
   const std::string stamp = k.out.substr(at + 13, k.out.find('\n', at) - at - 13);
-  const Outcome o =
-      mote("replay --map '" + map.string() + "' --log '" + (dir / "k" / "kidnap.clf").string() +
-           "' --reference '" + (dir / "k" / "kidnap.tum").string() + "' --out '" +
-           (dir / "out").string() + "' --particles 1000 --kidnapped-at " + stamp);
+  const Outcome o = mote("replay --map '" + kFloorplan.string() + "' --log '" +
+                         (dir / "k" / "kidnap.clf").string() + "' --reference '" +
+                         (dir / "k" / "kidnap.tum").string() + "' --out '" +
+                         (dir / "out").string() + "' --particles 1000 --kidnapped-at " + stamp);
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_NE(o.out.find("recover"), std::string::npos) << o.out;
   const std::string report = slurp(dir / "out" / "report.json");
@@ -196,8 +202,7 @@ TEST(Cli, InfoDescribesRos2AndCarmenLogs) {
 // a budget too small for any table is a one-line error naming the
 // size needed.
 TEST(Cli, InfoMapReportsTheRangeTable) {
-  const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
-  const Outcome o = mote("info --map '" + map.string() + "' --range-table-angles 64");
+  const Outcome o = mote("info --map '" + kFloorplan.string() + "' --range-table-angles 64");
   ASSERT_EQ(o.status, 0) << o.err;
   for (const char* text : {"range table           64 angles, lattice 1", "memory", "build",
                            "% within 1 cell", "error (cells)"}) {
@@ -206,16 +211,17 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
   EXPECT_EQ(o.out.find("certified"), std::string::npos) << o.out;
   EXPECT_EQ(o.out.find("built on first use"), std::string::npos) << o.out;
   // 12.5 MB on every cell at 64 angles: 3 MB tiles it.
-  const Outcome tiled =
-      mote("info --map '" + map.string() + "' --range-table-angles 64 --range-table-budget-mb 3");
+  const Outcome tiled = mote("info --map '" + kFloorplan.string() +
+                             "' --range-table-angles 64 --range-table-budget-mb 3");
   ASSERT_EQ(tiled.status, 0) << tiled.err;
   EXPECT_NE(tiled.out.find("64 x 64 cells, built on first use"), std::string::npos) << tiled.out;
   EXPECT_NE(tiled.out.find("% within 1 cell"), std::string::npos) << tiled.out;
   const Outcome certified =
-      mote("info --map '" + map.string() + "' --range-table-angles 64 --certified");
+      mote("info --map '" + kFloorplan.string() + "' --range-table-angles 64 --certified");
   ASSERT_EQ(certified.status, 0) << certified.err;
   EXPECT_NE(certified.out.find("% are cast exactly"), std::string::npos) << certified.out;
-  const Outcome tiny = mote("info --map '" + map.string() + "' --range-table-budget-mb 0.001");
+  const Outcome tiny =
+      mote("info --map '" + kFloorplan.string() + "' --range-table-budget-mb 0.001");
   EXPECT_EQ(tiny.status, 1) << tiny.out;
   EXPECT_EQ(lines(tiny.err), 1) << tiny.err;
   EXPECT_NE(tiny.err.find("needs"), std::string::npos) << tiny.err;
@@ -225,16 +231,10 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
 // entries sends rays to Embree; the certified table tracks a simulated log.
 TEST(Cli, ReplayReportsTheCertifiedTable) {
   const fs::path dir = scratch("certified");
-  const fs::path map = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
-  ASSERT_EQ(mote("simulate --map '" + map.string() + "' --out '" + dir.string() +
-                 "' --seconds 15 --seed 3")
-                .status,
-            0);
+  ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
   std::ofstream(dir / "certified.yaml") << "ray_casting: table_certified\n";
   const Outcome o =
-      mote("replay --map '" + map.string() + "' --log '" + (dir / "sim.clf").string() +
-           "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" +
-           (dir / "out").string() + "' --particles 1000 --model beam --quiet --config '" +
+      mote(replay_simulated(dir) + " --particles 1000 --model beam --quiet --config '" +
            (dir / "certified.yaml").string() + "'");
   ASSERT_EQ(o.status, 0) << o.err;
   const std::string report = slurp(dir / "out" / "report.json");
