@@ -76,7 +76,8 @@ void write_range_table_json(JsonWriter& json, const RangeTableSummary& s) {
   json.member("certified", s.certified);
   if (t.tile_cells > 0) {
     json.member("tile_cells", t.tile_cells)
-        .member("max_resident_tiles", std::uint64_t{t.max_resident_tiles});
+        .member("max_resident_tiles", std::uint64_t{t.max_resident_tiles})
+        .member("tiles_built_by_updates", std::uint64_t{s.tiles_built_by_updates});
   }
   if (s.certified && t.tile_cells == 0) json.member("uncertified_entries", t.uncertified);
   json.key("vs_embree").begin_object();

@@ -246,6 +246,24 @@ TEST(Cli, ReplayReportsTheCertifiedTable) {
   EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
 }
 
+// Issue 19: a table over budget is built in tiles as the updates need them; report.json counts
+// the tiles the updates built, and the tiled table tracks a simulated log.
+TEST(Cli, ReplayReportsTheTilesItsUpdatesBuilt) {
+  const fs::path dir = scratch("tiled");
+  ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
+  // 12.5 MB on every cell at 64 angles (InfoMapReportsTheRangeTable): 3 MB tiles it.
+  std::ofstream(dir / "tiled.yaml")
+      << "ray_casting: table\nrange_table_angles: 64\nrange_table_budget_mb: 3\n";
+  const Outcome o =
+      mote(replay_simulated(dir) + " --particles 1000 --model beam --quiet --config '" +
+           (dir / "tiled.yaml").string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string report = slurp(dir / "out" / "report.json");
+  EXPECT_EQ(json_number(report, "tile_cells"), 64.0) << report;
+  EXPECT_GE(json_number(report, "tiles_built_by_updates"), 1.0) << report;
+  EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
+}
+
 // An MCAP file cut short (here: the recording's zstd file cut in its middle, as a crash while
 // recording leaves it) replays up to its last complete chunk, with one warning on stderr.
 TEST(Cli, CutMcapReplaysWithAWarning) {

@@ -23,6 +23,8 @@ struct RangeTableSummary {
   /// RangeTableOptions::certify: the rays of uncertified entries (stats.uncertified of all) are
   /// cast exactly, and the accuracy above includes them.
   bool certified = false;
+  /// Tiled tables: tiles built by the updates of a replay (the accuracy check's not counted).
+  std::size_t tiles_built_by_updates = 0;
 };
 
 /// Measures `table` against an Embree caster of the same grid (kRangeTableCheckRays rays of at
