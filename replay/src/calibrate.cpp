@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <string>
 
@@ -406,8 +407,9 @@ void choose_margin(const OccupancyGrid& map, const DistanceField& field,
       trial.poses += t.poses;
       ++c.seed;
     }
-    trial.fit = 0.5 * (fits[0] + fits[1]);
-    trial.spread = 0.5 * std::abs(fits[0] - fits[1]);
+    const auto [low, high] = std::minmax_element(fits.begin(), fits.end());
+    trial.fit = std::accumulate(fits.begin(), fits.end(), 0.0) / kSeeds;
+    trial.spread = 0.5 * (*high - *low);
     return trial;
   };
   result.margins = search_margin(score, std::clamp(o.config.motion_noise_margin, 1.0, 64.0));
