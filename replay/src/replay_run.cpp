@@ -123,6 +123,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
         {.unknown_blocks = options.config.unknown_cells_block_rays,
          .certify = options.config.ray_casting == RayCasting::kTableCertified});
   }
+  // After the accuracy check, whose tile builds are not the updates'.
   const std::size_t tiles_before = table ? table->tiles_built() : 0;
 
   const auto start = Clock::now();

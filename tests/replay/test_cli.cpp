@@ -22,21 +22,25 @@
 namespace mote_cli_test {
 namespace {
 
-const fs::path kFloorplan = fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml";
+fs::path floorplan() { return fs::path(MOTE_SOURCE_DIR) / "replay/data/floorplan.yaml"; }
 
 /// Simulates `seconds` of the floor plan into dir (sim.clf, sim.gt.tum).
 void simulate_floorplan(const fs::path& dir, int seconds, int seed) {
   const Outcome sim =
-      mote("simulate --map '" + kFloorplan.string() + "' --out '" + dir.string() + "' --seconds " +
+      mote("simulate --map '" + floorplan().string() + "' --out '" + dir.string() + "' --seconds " +
            std::to_string(seconds) + " --seed " + std::to_string(seed));
   ASSERT_EQ(sim.status, 0) << sim.err;
 }
 
-/// A replay of dir's simulated log against its ground truth, writing to dir/out.
+/// A replay of a log of the floor plan against its ground truth.
+std::string replay_floorplan(const fs::path& log, const fs::path& reference, const fs::path& out) {
+  return "replay --map '" + floorplan().string() + "' --log '" + log.string() + "' --reference '" +
+         reference.string() + "' --out '" + out.string() + "'";
+}
+
+/// A replay of dir's simulated log, writing to dir/out.
 std::string replay_simulated(const fs::path& dir) {
-  return "replay --map '" + kFloorplan.string() + "' --log '" + (dir / "sim.clf").string() +
-         "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" + (dir / "out").string() +
-         "'";
+  return replay_floorplan(dir / "sim.clf", dir / "sim.gt.tum", dir / "out");
 }
 
 TEST(Cli, HelpDocumentsEveryCommandAndFlag) {
@@ -133,10 +137,9 @@ TEST(Cli, KidnapThenReplayReportsRecovery) {
   const auto at = k.out.find("splice stamp ");
   ASSERT_NE(at, std::string::npos) << k.out;
   const std::string stamp = k.out.substr(at + 13, k.out.find('\n', at) - at - 13);
-  const Outcome o = mote("replay --map '" + kFloorplan.string() + "' --log '" +
-                         (dir / "k" / "kidnap.clf").string() + "' --reference '" +
-                         (dir / "k" / "kidnap.tum").string() + "' --out '" +
-                         (dir / "out").string() + "' --particles 1000 --kidnapped-at " + stamp);
+  const Outcome o =
+      mote(replay_floorplan(dir / "k" / "kidnap.clf", dir / "k" / "kidnap.tum", dir / "out") +
+           " --particles 1000 --kidnapped-at " + stamp);
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_NE(o.out.find("recover"), std::string::npos) << o.out;
   const std::string report = slurp(dir / "out" / "report.json");
@@ -202,7 +205,7 @@ TEST(Cli, InfoDescribesRos2AndCarmenLogs) {
 // a budget too small for any table is a one-line error naming the
 // size needed.
 TEST(Cli, InfoMapReportsTheRangeTable) {
-  const Outcome o = mote("info --map '" + kFloorplan.string() + "' --range-table-angles 64");
+  const Outcome o = mote("info --map '" + floorplan().string() + "' --range-table-angles 64");
   ASSERT_EQ(o.status, 0) << o.err;
   for (const char* text : {"range table           64 angles, lattice 1", "memory", "build",
                            "% within 1 cell", "error (cells)"}) {
@@ -211,17 +214,17 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
   EXPECT_EQ(o.out.find("certified"), std::string::npos) << o.out;
   EXPECT_EQ(o.out.find("built on first use"), std::string::npos) << o.out;
   // 12.5 MB on every cell at 64 angles: 3 MB tiles it.
-  const Outcome tiled = mote("info --map '" + kFloorplan.string() +
+  const Outcome tiled = mote("info --map '" + floorplan().string() +
                              "' --range-table-angles 64 --range-table-budget-mb 3");
   ASSERT_EQ(tiled.status, 0) << tiled.err;
   EXPECT_NE(tiled.out.find("64 x 64 cells, built on first use"), std::string::npos) << tiled.out;
   EXPECT_NE(tiled.out.find("% within 1 cell"), std::string::npos) << tiled.out;
   const Outcome certified =
-      mote("info --map '" + kFloorplan.string() + "' --range-table-angles 64 --certified");
+      mote("info --map '" + floorplan().string() + "' --range-table-angles 64 --certified");
   ASSERT_EQ(certified.status, 0) << certified.err;
   EXPECT_NE(certified.out.find("% are cast exactly"), std::string::npos) << certified.out;
   const Outcome tiny =
-      mote("info --map '" + kFloorplan.string() + "' --range-table-budget-mb 0.001");
+      mote("info --map '" + floorplan().string() + "' --range-table-budget-mb 0.001");
   EXPECT_EQ(tiny.status, 1) << tiny.out;
   EXPECT_EQ(lines(tiny.err), 1) << tiny.err;
   EXPECT_NE(tiny.err.find("needs"), std::string::npos) << tiny.err;
@@ -247,7 +250,8 @@ TEST(Cli, ReplayReportsTheCertifiedTable) {
 }
 
 // Issue 19: a table over budget is built in tiles as the updates need them; report.json counts
-// the tiles the updates built, and the tiled table tracks a simulated log.
+// the tiles the updates built, and the tiled table tracks a simulated log. With tiles off, the
+// same budget gives a coarser lattice.
 TEST(Cli, ReplayReportsTheTilesItsUpdatesBuilt) {
   const fs::path dir = scratch("tiled");
   ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
@@ -262,6 +266,18 @@ TEST(Cli, ReplayReportsTheTilesItsUpdatesBuilt) {
   EXPECT_EQ(json_number(report, "tile_cells"), 64.0) << report;
   EXPECT_GE(json_number(report, "tiles_built_by_updates"), 1.0) << report;
   EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
+
+  // range_table_tiles: false: the same budget coarsens the lattice instead.
+  std::ofstream(dir / "lattice.yaml") << "ray_casting: table\nrange_table_angles: 64\n"
+                                         "range_table_budget_mb: 3\nrange_table_tiles: false\n";
+  fs::remove_all(dir / "out");
+  const Outcome lattice =
+      mote(replay_simulated(dir) + " --particles 1000 --model beam --quiet --config '" +
+           (dir / "lattice.yaml").string() + "'");
+  ASSERT_EQ(lattice.status, 0) << lattice.err;
+  const std::string coarse = slurp(dir / "out" / "report.json");
+  EXPECT_EQ(coarse.find("tile_cells"), std::string::npos) << coarse;
+  EXPECT_GT(json_number(coarse, "lattice_cells"), 1.0) << coarse;
 }
 
 // An MCAP file cut short (here: the recording's zstd file cut in its middle, as a crash while

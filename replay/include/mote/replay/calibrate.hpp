@@ -203,7 +203,7 @@ struct AckermannFit {
 struct MarginTrial {
   double margin = 0;      ///< motion_noise_margin tried
   double fit = 0;         ///< mean per-beam log-density at the estimates, nats
-  double spread = 0;      ///< half the two runs' difference: the standard error of `fit`
+  double spread = 0;      ///< half the runs' range (two runs: the standard error of `fit`)
   std::size_t poses = 0;  ///< estimates scored, over both runs
   bool accepted = false;  ///< the search took this step (search_margin)
 };
