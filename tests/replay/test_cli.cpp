@@ -43,6 +43,18 @@ std::string replay_simulated(const fs::path& dir) {
   return replay_floorplan(dir / "sim.clf", dir / "sim.gt.tum", dir / "out");
 }
 
+/// Replays dir's simulated log with the beam model, 1000 particles and `yaml` as its config;
+/// returns report.json (empty, the failure reported, when the replay fails).
+std::string replay_beam_report(const fs::path& dir, const std::string& yaml) {
+  std::ofstream(dir / "config.yaml") << yaml;
+  fs::remove_all(dir / "out");
+  const Outcome o =
+      mote(replay_simulated(dir) + " --particles 1000 --model beam --quiet --config '" +
+           (dir / "config.yaml").string() + "'");
+  EXPECT_EQ(o.status, 0) << o.err;
+  return o.status == 0 ? slurp(dir / "out" / "report.json") : std::string();
+}
+
 TEST(Cli, HelpDocumentsEveryCommandAndFlag) {
   const Outcome top = mote("--help");
   EXPECT_EQ(top.status, 0);
@@ -235,12 +247,7 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
 TEST(Cli, ReplayReportsTheCertifiedTable) {
   const fs::path dir = scratch("certified");
   ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
-  std::ofstream(dir / "certified.yaml") << "ray_casting: table_certified\n";
-  const Outcome o =
-      mote(replay_simulated(dir) + " --particles 1000 --model beam --quiet --config '" +
-           (dir / "certified.yaml").string() + "'");
-  ASSERT_EQ(o.status, 0) << o.err;
-  const std::string report = slurp(dir / "out" / "report.json");
+  const std::string report = replay_beam_report(dir, "ray_casting: table_certified\n");
   EXPECT_NE(report.find("\"certified\": true"), std::string::npos) << report;
   const double uncertified = json_number(report, "uncertified_entries");
   EXPECT_GT(uncertified, 0.0);
@@ -256,26 +263,15 @@ TEST(Cli, ReplayReportsTheTilesItsUpdatesBuilt) {
   const fs::path dir = scratch("tiled");
   ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
   // 12.5 MB on every cell at 64 angles (InfoMapReportsTheRangeTable): 3 MB tiles it.
-  std::ofstream(dir / "tiled.yaml")
-      << "ray_casting: table\nrange_table_angles: 64\nrange_table_budget_mb: 3\n";
-  const Outcome o =
-      mote(replay_simulated(dir) + " --particles 1000 --model beam --quiet --config '" +
-           (dir / "tiled.yaml").string() + "'");
-  ASSERT_EQ(o.status, 0) << o.err;
-  const std::string report = slurp(dir / "out" / "report.json");
+  const std::string config =
+      "ray_casting: table\nrange_table_angles: 64\nrange_table_budget_mb: 3\n";
+  const std::string report = replay_beam_report(dir, config);
   EXPECT_EQ(json_number(report, "tile_cells"), 64.0) << report;
   EXPECT_GE(json_number(report, "tiles_built_by_updates"), 1.0) << report;
   EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
 
   // range_table_tiles: false: the same budget coarsens the lattice instead.
-  std::ofstream(dir / "lattice.yaml") << "ray_casting: table\nrange_table_angles: 64\n"
-                                         "range_table_budget_mb: 3\nrange_table_tiles: false\n";
-  fs::remove_all(dir / "out");
-  const Outcome lattice =
-      mote(replay_simulated(dir) + " --particles 1000 --model beam --quiet --config '" +
-           (dir / "lattice.yaml").string() + "'");
-  ASSERT_EQ(lattice.status, 0) << lattice.err;
-  const std::string coarse = slurp(dir / "out" / "report.json");
+  const std::string coarse = replay_beam_report(dir, config + "range_table_tiles: false\n");
   EXPECT_EQ(coarse.find("tile_cells"), std::string::npos) << coarse;
   EXPECT_GT(json_number(coarse, "lattice_cells"), 1.0) << coarse;
 }
