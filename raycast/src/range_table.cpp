@@ -153,9 +153,7 @@ bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
   constexpr std::size_t kTileCells = std::size_t{detail::TileSet::kCells} * detail::TileSet::kCells;
   const std::size_t tile_bytes =
       kTileCells * static_cast<std::size_t>(options.angles) * sizeof(std::uint16_t);
-  const std::size_t tile_count =
-      static_cast<std::size_t>((width + detail::TileSet::kCells - 1) / detail::TileSet::kCells) *
-      static_cast<std::size_t>((height + detail::TileSet::kCells - 1) / detail::TileSet::kCells);
+  const std::size_t tile_count = detail::TileSet::count_for(width, height);
   const std::size_t fixed =
       blocking.size() + walls->bytes() + tile_count * detail::TileSet::kBookkeepingBytes;
   // A sensor's 3 x 3 candidate cells can span 4 tiles; fewer resident tiles would thrash.

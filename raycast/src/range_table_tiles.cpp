@@ -9,9 +9,9 @@ namespace mote::detail {
 
 std::unique_ptr<TileSet> TileSet::reserve(int width, int height, int angles,
                                           std::size_t max_resident) {
-  const auto tiles_w = static_cast<std::size_t>((width + kCells - 1) / kCells);
-  const auto tiles_h = static_cast<std::size_t>((height + kCells - 1) / kCells);
-  const std::size_t slots = tiles_w * tiles_h * kCells * kCells;
+  const std::size_t tiles_w = tiles_across(width);
+  const std::size_t tiles = count_for(width, height);
+  const std::size_t slots = tiles * kCells * kCells;
   if (slots > std::numeric_limits<std::uint32_t>::max() || max_resident == 0) return nullptr;
   const std::size_t bytes = slots * static_cast<std::size_t>(angles) * sizeof(std::uint16_t);
   void* region = reserve_address_space(bytes);
@@ -24,8 +24,8 @@ std::unique_ptr<TileSet> TileSet::reserve(int width, int height, int angles,
   s->max_resident_ = max_resident;
   s->ranges_ = static_cast<std::uint16_t*>(region);
   s->reserved_bytes_ = bytes;
-  s->resident_.assign(tiles_w * tiles_h, 0);
-  s->last_used_.assign(tiles_w * tiles_h, 0);
+  s->resident_.assign(tiles, 0);
+  s->last_used_.assign(tiles, 0);
   return s;
 }
 

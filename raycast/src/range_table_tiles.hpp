@@ -31,6 +31,15 @@ class TileSet {
   /// Bookkeeping held for every tile, resident or not: a residency flag and a last-use stamp.
   static constexpr std::size_t kBookkeepingBytes = sizeof(Residency) + sizeof(UseStamp);
 
+  /// Tiles along a side of `cells` cells (the last one may be partial).
+  [[nodiscard]] static constexpr std::size_t tiles_across(int cells) noexcept {
+    return static_cast<std::size_t>((cells + kCells - 1) / kCells);
+  }
+  /// Tiles covering a map of width x height cells.
+  [[nodiscard]] static constexpr std::size_t count_for(int width, int height) noexcept {
+    return tiles_across(width) * tiles_across(height);
+  }
+
   /// Reserves the address space. nullptr (no tiles: the caller coarsens the lattice instead)
   /// when the system will not reserve it or slots would not fit 32 bits.
   [[nodiscard]] static std::unique_ptr<TileSet> reserve(int width, int height, int angles,
