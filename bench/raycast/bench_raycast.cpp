@@ -87,26 +87,33 @@ const mote::OccupancyGrid* grid_for(int map) {
 /// random rooms and walls.
 mote::OccupancyGrid big_grid() { return mote::load_map(mote::bench::write_office_map(4000)); }
 
-/// The range table of a map, built once per process (default options: 512 angles, 256 MB;
-/// certified or not).
-const mote::RangeTable* table_for(int map, bool certify) {
-  static std::map<std::pair<int, bool>, std::unique_ptr<mote::RangeTable>> cache;
-  auto& slot = cache[{map, certify}];
+/// How a table answers: every ray from its entry, rays of uncertified entries exactly, or every
+/// ray confirmed on the map (RangeTableOptions::certify, ::confirm).
+enum class TableMode { kPlain, kCertified, kConfirmed };
+
+mote::RangeTableOptions options_for(TableMode mode) {
+  return {.certify = mode == TableMode::kCertified, .confirm = mode == TableMode::kConfirmed};
+}
+
+/// The range table of a map, built once per process (default options: 512 angles, 256 MB).
+const mote::RangeTable* table_for(int map, TableMode mode) {
+  static std::map<std::pair<int, TableMode>, std::unique_ptr<mote::RangeTable>> cache;
+  auto& slot = cache[{map, mode}];
   if (!slot) {
     const mote::OccupancyGrid* grid = grid_for(map);
     if (grid == nullptr) return nullptr;
-    slot = std::make_unique<mote::RangeTable>(*grid, mote::RangeTableOptions{.certify = certify});
+    slot = std::make_unique<mote::RangeTable>(*grid, options_for(mode));
   }
   return slot.get();
 }
 
 /// The range table, built once per map outside the timed loop.
-template <bool kCertify>
+template <TableMode kMode>
 struct TableCaster {
   const mote::RangeTable* table;
   TableCaster(const mote::OccupancyGrid& grid, const mote::RayCastOptions&) {
     for (int map : {0, 1}) {
-      if (grid_for(map) == &grid) table = table_for(map, kCertify);
+      if (grid_for(map) == &grid) table = table_for(map, kMode);
     }
   }
   void cast(const mote::RayBatch& batch, std::span<float> ranges) const {
@@ -150,12 +157,17 @@ void BM_RayCast_GridWalk(benchmark::State& state) {
 }
 
 void BM_RayCast_Table(benchmark::State& state) {
-  run_cast<TableCaster<false>>(state, mote::RayCastOptions{});
+  run_cast<TableCaster<TableMode::kPlain>>(state, mote::RayCastOptions{});
 }
 
 /// The certified table: rays of uncertified entries are cast with Embree.
 void BM_RayCast_TableCertified(benchmark::State& state) {
-  run_cast<TableCaster<true>>(state, mote::RayCastOptions{});
+  run_cast<TableCaster<TableMode::kCertified>>(state, mote::RayCastOptions{});
+}
+
+/// The confirmed table: every ray's range confirmed on the map, the unconfirmed cast with Embree.
+void BM_RayCast_TableConfirmed(benchmark::State& state) {
+  run_cast<TableCaster<TableMode::kConfirmed>>(state, mote::RayCastOptions{});
 }
 
 /// Table build time with the default options (512 angles, 256 MB budget): map 0 Intel,
@@ -167,7 +179,7 @@ void BM_RayCast_TableCertified(benchmark::State& state) {
 /// that check built.
 void BM_RangeTable_Build(benchmark::State& state) {
   const int map = static_cast<int>(state.range(0));
-  const bool certify = state.range(2) == 1;
+  const auto mode = static_cast<TableMode>(state.range(2));
   static const mote::OccupancyGrid big = big_grid();
   const mote::OccupancyGrid* grid = map == 2 ? &big : grid_for(map);
   if (grid == nullptr) {
@@ -178,10 +190,7 @@ void BM_RangeTable_Build(benchmark::State& state) {
   std::unique_ptr<mote::RangeTable> table;
   for (auto _ : state) {
     table.reset();
-    arena.execute([&] {
-      table =
-          std::make_unique<mote::RangeTable>(*grid, mote::RangeTableOptions{.certify = certify});
-    });
+    arena.execute([&] { table = std::make_unique<mote::RangeTable>(*grid, options_for(mode)); });
   }
   const mote::RangeTableStats& stats = table->stats();
   const mote::RayCaster exact(*grid);
@@ -243,12 +252,15 @@ BENCHMARK(BM_RayCast_Embree1)->Apply(cases);
 BENCHMARK(BM_RayCast_GridWalk)->Apply(cases);
 BENCHMARK(BM_RayCast_Table)->Apply(cases);
 BENCHMARK(BM_RayCast_TableCertified)->Apply(cases);
+BENCHMARK(BM_RayCast_TableConfirmed)->Apply(cases);
 BENCHMARK(BM_RangeTable_Build)
-    ->ArgNames({"map", "threads", "certify"})
+    ->ArgNames({"map", "threads", "mode"})  // mode: 0 plain, 1 certified, 2 confirmed
     ->Args({0, 2, 0})
     ->Args({2, 2, 0})
     ->Args({0, 2, 1})
     ->Args({2, 2, 1})
+    ->Args({0, 2, 2})
+    ->Args({2, 2, 2})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);

@@ -163,7 +163,7 @@ bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
                                      (options.memory_budget_bytes - fixed) / tile_bytes);
   }
   if (!tiles) {
-    if (!options.certify) walls.reset();
+    if (!casts_exactly()) walls.reset();
     return false;
   }
   ranges = tiles->ranges();
@@ -180,7 +180,7 @@ void RangeTable::Impl::build() {
   set_directions();
   stats.angles = options.angles;
   stats.units_per_cell = units_for(width, height);
-  if (options.certify) walls = std::make_unique<detail::WallScene>(m);
+  if (casts_exactly()) walls = std::make_unique<detail::WallScene>(m);
   const std::size_t scene_bytes = walls ? walls->bytes() : 0;
   // Tiles when the whole table on every cell is over budget.
   const bool whole_fits = detail::table_bytes(detail::count_lattice_points(m, 1), blocking.size(),

@@ -89,6 +89,10 @@ struct RangeTable::Impl {
   std::vector<float> point_y;
   RangeTableStats stats;
 
+  /// Whether some rays are cast exactly (with Embree on `walls`) even on a table's cells.
+  [[nodiscard]] bool casts_exactly() const noexcept { return options.certify || options.confirm; }
+  /// Confirmation is in effect (certification takes precedence).
+  [[nodiscard]] bool confirms() const noexcept { return options.confirm && !options.certify; }
   [[nodiscard]] detail::CellMask mask() const noexcept {
     return {width, height, resolution, blocking.data()};
   }
@@ -124,6 +128,13 @@ struct RangeTable::Impl {
   /// The range (m) that choice reads, or kCastExactly.
   [[nodiscard]] [[gnu::always_inline]] inline float read(const detail::Choice& choice,
                                                          float max_range) const noexcept;
+  /// The confirmed ranges (m) of every beam of one sensor at grid frame point (gx, gy) m, whose
+  /// beam b points along table angle index heading + beam_index[b] and grid frame direction
+  /// dir(b); kCastExactly for a beam no entry confirms (RangeTableOptions::confirm).
+  template <class Direction>
+  void confirm_beams(const detail::Candidates& c, double gx, double gy, double heading,
+                     std::span<const double> beam_index, const Direction& dir, float max_range,
+                     float* out) const noexcept;
   [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
   /// Casts particles [begin, end) of a batch; rays of uncertified entries go to `exact` (a
   /// Packet16), or nowhere when the table is not certified.

@@ -10,24 +10,29 @@
 #include <mutex>
 #include <numbers>
 #include <shared_mutex>
+#include <utility>
 #include <vector>
 
 #include "embree_packets.hpp"
 #include "grid_walk.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/raycast/range_table.hpp"
+#include "range_table_angles.hpp"
+#include "range_table_confirm.hpp"
 #include "range_table_impl.hpp"
 #include "range_table_sweep.hpp"
 #include "ray_setup.hpp"
 
 namespace mote {
 
+using detail::angle_below;
 using detail::BeamScratch;
 using detail::Candidates;
 using detail::Choice;
 using detail::kCastExactly;
 using detail::kLeavesMap;
 using detail::kMissing;
+using detail::nearest_angle;
 
 Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) const noexcept {
   Candidates c;
@@ -99,38 +104,6 @@ void RangeTable::Impl::prepare_tiles(const detail::BatchRays& rays,
       needed.push_back(static_cast<std::uint32_t>(t));
   }
   tiles->ensure(needed, [&](std::size_t t) { build_tile(t); });
-}
-
-/// The table angle nearest to index a_real, which callers keep in [0, 2 * n); anything else
-/// finite (an index wrapped with a rounding error, or a huge angle whose wrap lost precision)
-/// is reduced first, so the cast below never sees a value out of int's range.
-inline std::size_t nearest_angle(double a_real, int n) noexcept {
-  if (!(a_real >= 0.0 && a_real < 2.0 * n)) {
-    a_real = std::fmod(a_real, static_cast<double>(n));
-    if (a_real < 0.0) a_real += n;
-    if (!(a_real >= 0.0 && a_real < n)) a_real = 0.0;  // NaN: callers never pass one
-  }
-  int a = static_cast<int>(a_real + 0.5);
-  if (a >= n) a -= n;
-  if (a >= n) a -= n;
-  return static_cast<std::size_t>(a);
-}
-
-/// The table angle at or below index a_real, and a_real's distance past it (steps, in [0, 1)).
-/// Callers keep a_real in [0, 2 * n); anything else finite (an index wrapped with a rounding
-/// error, or a huge angle whose wrap lost precision) is reduced first, so the cast below never
-/// sees a value out of int's range.
-inline std::size_t angle_below(double a_real, int n, float& frac) noexcept {
-  if (!(a_real >= 0.0 && a_real < 2.0 * n)) {
-    a_real = std::fmod(a_real, static_cast<double>(n));
-    if (a_real < 0.0) a_real += n;
-    if (!(a_real >= 0.0 && a_real < n)) a_real = 0.0;  // NaN: callers never pass one
-  }
-  int a = static_cast<int>(a_real);
-  frac = std::clamp(static_cast<float>(a_real - a), 0.0F, 1.0F);
-  if (a >= n) a -= n;
-  if (a >= n) a -= n;
-  return static_cast<std::size_t>(a);
 }
 
 inline void RangeTable::Impl::choose(const Candidates& c, double heading,
@@ -254,7 +227,13 @@ float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
         [&] { tiles->ensure(needed, [&](std::size_t t) { build_tile(t); }); });
   }
   float range = kCastExactly;
-  if (!tiles || tiles->covers(i, j)) {
+  if ((!tiles || tiles->covers(i, j)) && confirms()) {
+    const auto direction = [&](std::size_t) {
+      return std::pair{static_cast<float>(ray.dx), static_cast<float>(ray.dy)};
+    };
+    confirm_beams(tiles ? tile_candidates(i, j, ray.ox, ray.oy) : candidates(i, j, ray.ox, ray.oy),
+                  ray.ox, ray.oy, a_real, {&beam, 1}, direction, max_range, &range);
+  } else if (!tiles || tiles->covers(i, j)) {
     choose(tiles ? tile_candidates(i, j, ray.ox, ray.oy) : candidates(i, j, ray.ox, ray.oy), a_real,
            {&beam, 1}, scratch, {&choice, 1});
     range = read(choice, max_range);
@@ -297,9 +276,18 @@ void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::C
       // A tile the budget could not hold for this cast (a tiled table always passes `exact`).
       for (std::size_t b = 0; b < beams; ++b) exact->add(rays.ray(s, b), p * beams + b);
     } else {
-      choose(tiles ? tile_candidates(i, j, s.ox, s.oy) : candidates(i, j, s.ox, s.oy),
-             wrap(std::atan2(s.s, s.c) * per_rad), beam_index, scratch, choices);
-      for (std::size_t b = 0; b < beams; ++b) out[b] = read(choices[b], rays.max_range());
+      const Candidates c = tiles ? tile_candidates(i, j, s.ox, s.oy) : candidates(i, j, s.ox, s.oy);
+      const double heading = wrap(std::atan2(s.s, s.c) * per_rad);
+      if (confirms()) {
+        const auto direction = [&](std::size_t b) {
+          const detail::GridRay r = rays.ray(s, b);
+          return std::pair{static_cast<float>(r.dx), static_cast<float>(r.dy)};
+        };
+        confirm_beams(c, s.ox, s.oy, heading, beam_index, direction, rays.max_range(), out);
+      } else {
+        choose(c, heading, beam_index, scratch, choices);
+        for (std::size_t b = 0; b < beams; ++b) out[b] = read(choices[b], rays.max_range());
+      }
       if (exact == nullptr) continue;
       for (std::size_t b = 0; b < beams; ++b) {
         if (out[b] == kCastExactly) exact->add(rays.ray(s, b), p * beams + b);
