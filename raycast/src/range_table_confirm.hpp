@@ -7,7 +7,8 @@
 /// crossing and is free just before it, the query's ray does enter a blocking cell there. So a
 /// confirmed claim is an exact upper bound of the query's range, and the nearest confirmed claim
 /// of several neighbours is its range unless every neighbour's ray misses a nearer obstacle.
-/// Measured on Intel, Willow, Stata basement and Wean (BENCHMARKS.md, "Confirmed queries").
+/// Measured on Intel, Willow, Stata basement and Wean (BENCHMARKS.md, "Claims that name a
+/// wall face").
 
 #include <algorithm>
 #include <array>
@@ -28,8 +29,8 @@ inline constexpr float kNotConfirmed = std::numeric_limits<float>::infinity();
 /// A claimed hit this close (cells) to both grid lines lies at a corner: both faces are tried.
 inline constexpr float kCornerSlack = 0.2F;
 
-/// Whether cell (i, j) blocks, off-map cells free; no branch on where the cell is (a query's
-/// crossings land anywhere, and mispredicted branches were most of a claim's cost).
+/// Whether cell (i, j) blocks, off-map cells free, without a branch on where the cell is (a
+/// query's crossings land anywhere, so such a branch would be unpredictable).
 [[nodiscard]] inline bool blocks_at(const CellMask& m, int i, int j) noexcept {
   const bool on_map = (static_cast<unsigned>(i) < static_cast<unsigned>(m.width)) &
                       (static_cast<unsigned>(j) < static_cast<unsigned>(m.height));
