@@ -23,16 +23,17 @@ constexpr float kMaxRange = 30.0F;
 
 /// Intel at 64 angles: the whole table on every cell takes about 24 MB, so an 8 MB budget
 /// tiles it (a tile is 64 x 64 cells x 64 angles, 512 KB).
-RangeTableOptions tiled_options(bool certify = false) {
+RangeTableOptions tiled_options(bool certify = false, bool confirm = false) {
   RangeTableOptions o;
   o.angles = 64;
   o.memory_budget_bytes = std::size_t{8} << 20U;
   o.certify = certify;
+  o.confirm = confirm;
   return o;
 }
 
-RangeTableOptions whole_options(bool certify = false) {
-  RangeTableOptions o = tiled_options(certify);
+RangeTableOptions whole_options(bool certify = false, bool confirm = false) {
+  RangeTableOptions o = tiled_options(certify, confirm);
   o.memory_budget_bytes = std::size_t{1} << 30U;
   return o;
 }
@@ -66,11 +67,11 @@ std::vector<float> cast(const RangeTable& table, const test::Scatter& s) {
   return out;
 }
 
-void expect_read_as_the_whole_table(bool certify) {
+void expect_read_as_the_whole_table(bool certify, bool confirm = false) {
   MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
   const OccupancyGrid grid = load_map(path);
-  const RangeTable whole(grid, whole_options(certify));
-  const RangeTable tiled(grid, tiled_options(certify));
+  const RangeTable whole(grid, whole_options(certify, confirm));
+  const RangeTable tiled(grid, tiled_options(certify, confirm));
   ASSERT_EQ(whole.stats().tile_cells, 0);
   ASSERT_EQ(tiled.stats().tile_cells, 64);
   ASSERT_EQ(tiled.stats().points, whole.stats().points);
@@ -86,7 +87,10 @@ void expect_read_as_the_whole_table(bool certify) {
     ASSERT_GT(s.x.size(), 10U);
     EXPECT_EQ(cast(tiled, s), cast(whole, s)) << "cloud around pose " << c;
   }
-  std::cout << "Intel tiled" << (certify ? ", certified: " : ": ")
+  std::cout << "Intel tiled"
+            << (certify   ? ", certified: "
+                : confirm ? ", confirmed: "
+                          : ": ")
             << tiled.stats().max_resident_tiles << " tiles resident at most, "
             << tiled.tiles_built() << " built for " << centres.size() << " clouds\n";
   EXPECT_GT(tiled.tiles_built(), tiled.stats().max_resident_tiles) << "no tile was evicted";
@@ -106,6 +110,12 @@ TEST(RangeTableTiles, ReadAsTheWholeTableThroughBuildsAndEvictions) {
 /// row with its neighbours'), so its verdicts are the whole certified table's.
 TEST(RangeTableTiles, CertifiedReadAsTheWholeCertifiedTable) {
   expect_read_as_the_whole_table(true);
+}
+
+/// A tiled table's candidates are the whole table's (every cell's centre, in the same order),
+/// so its confirmed claims, and the rays it casts exactly, are the whole confirmed table's.
+TEST(RangeTableTiles, ConfirmedReadAsTheWholeConfirmedTable) {
+  expect_read_as_the_whole_table(false, true);
 }
 
 TEST(RangeTableTiles, SensorsInTilesTheBudgetCannotHoldAreCastExactly) {
