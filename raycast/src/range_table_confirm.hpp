@@ -29,15 +29,14 @@ inline constexpr float kNotConfirmed = std::numeric_limits<float>::infinity();
 /// A claimed hit this close (cells) to both grid lines lies at a corner: both faces are tried.
 inline constexpr float kCornerSlack = 0.2F;
 
-/// Whether cell (i, j) blocks, off-map cells free, without a branch on where the cell is (a
-/// query's crossings land anywhere, so such a branch would be unpredictable).
+/// Whether cell (i, j) blocks, off-map cells free.
 [[nodiscard]] inline bool blocks_at(const CellMask& m, int i, int j) noexcept {
-  const bool on_map = (static_cast<unsigned>(i) < static_cast<unsigned>(m.width)) &
+  const bool on_map = (static_cast<unsigned>(i) < static_cast<unsigned>(m.width)) &&
                       (static_cast<unsigned>(j) < static_cast<unsigned>(m.height));
   const std::size_t at = on_map ? static_cast<std::size_t>(j) * static_cast<std::size_t>(m.width) +
                                       static_cast<std::size_t>(i)
                                 : 0;
-  return on_map & (m.cells[at] != 0);
+  return on_map && m.cells[at] != 0;
 }
 
 /// Round to the nearest integer for |v| < 2^22 (grid lines), without a libm call.
@@ -78,9 +77,9 @@ struct QueryRay {
   const int l = static_cast<int>(line);
   const int beyond = toward > 0.0F ? l : l - 1;
   const int before = toward > 0.0F ? l - 1 : l;
-  const bool enters = vertical ? blocks_at(m, beyond, across) & !blocks_at(m, before, across)
-                               : blocks_at(m, across, beyond) & !blocks_at(m, across, before);
-  return ahead & enters ? t : kNotConfirmed;
+  const bool enters = vertical ? blocks_at(m, beyond, across) && !blocks_at(m, before, across)
+                               : blocks_at(m, across, beyond) && !blocks_at(m, across, before);
+  return ahead && enters ? t : kNotConfirmed;
 }
 
 /// The nearest confirmed crossing of the face(s) a claimed hit point (hx, hy) (cells) names.
@@ -90,11 +89,11 @@ struct QueryRay {
   const float fy = round_to_line(hy);
   const float ex = std::abs(hx - fx);
   const float ey = std::abs(hy - fy);
-  // Both crossings, then the ones the claim names: computing both costs less than branching.
+  // Both crossings, then the ones the claim names.
   const float tx = face_crossing(m, q, true, fx);
   const float ty = face_crossing(m, q, false, fy);
-  const bool names_x = (ex <= ey) | (ex < kCornerSlack);
-  const bool names_y = (ey < ex) | (ey < kCornerSlack);
+  const bool names_x = ex <= ey || ex < kCornerSlack;
+  const bool names_y = ey < ex || ey < kCornerSlack;
   return std::min(names_x ? tx : kNotConfirmed, names_y ? ty : kNotConfirmed);
 }
 
