@@ -145,8 +145,8 @@ void RangeTable::Impl::confirm_beams(const detail::Candidates& c, double gx, dou
       nearest = std::min(nearest, detail::confirm_claim(m, q, ox + c.wx[k] + r * cos_a[a],
                                                         oy + c.wy[k] + r * sin_a[a]));
     };
-    // First the nearest neighbour on each side of the ray at both directions around it (99.2-
-    // 99.5 % of rays within a cell); when none confirms, every neighbour at both directions.
+    // First the nearest neighbour on each side of the ray at both directions around it; when
+    // none confirms (1.6 % of Intel tracking's beams), every neighbour at both directions.
     for (const std::size_t a : around) {
       for (const std::size_t k : detail::nearest_each_side(c, cos_a[a], sin_a[a])) {
         if (k != detail::Candidates::kCount) check(k, a);

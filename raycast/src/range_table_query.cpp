@@ -227,16 +227,18 @@ float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
         [&] { tiles->ensure(needed, [&](std::size_t t) { build_tile(t); }); });
   }
   float range = kCastExactly;
-  if ((!tiles || tiles->covers(i, j)) && confirms()) {
-    const auto direction = [&](std::size_t) {
-      return std::pair{static_cast<float>(ray.dx), static_cast<float>(ray.dy)};
-    };
-    confirm_beams(tiles ? tile_candidates(i, j, ray.ox, ray.oy) : candidates(i, j, ray.ox, ray.oy),
-                  ray.ox, ray.oy, a_real, {&beam, 1}, direction, max_range, &range);
-  } else if (!tiles || tiles->covers(i, j)) {
-    choose(tiles ? tile_candidates(i, j, ray.ox, ray.oy) : candidates(i, j, ray.ox, ray.oy), a_real,
-           {&beam, 1}, scratch, {&choice, 1});
-    range = read(choice, max_range);
+  if (!tiles || tiles->covers(i, j)) {
+    const Candidates c =
+        tiles ? tile_candidates(i, j, ray.ox, ray.oy) : candidates(i, j, ray.ox, ray.oy);
+    if (confirms()) {
+      const auto direction = [&](std::size_t) {
+        return std::pair{static_cast<float>(ray.dx), static_cast<float>(ray.dy)};
+      };
+      confirm_beams(c, ray.ox, ray.oy, a_real, {&beam, 1}, direction, max_range, &range);
+    } else {
+      choose(c, a_real, {&beam, 1}, scratch, {&choice, 1});
+      range = read(choice, max_range);
+    }
   }
   if (range != kCastExactly) return range;
   const detail::FlushDenormals denormals_off;
