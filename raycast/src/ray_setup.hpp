@@ -118,6 +118,9 @@ class BatchRays {
     return {sensor.ox, sensor.oy, snap_direction(sensor.c * cb - sensor.s * sb),
             snap_direction(sensor.s * cb + sensor.c * sb)};
   }
+  /// Beam b's direction in the sensor frame, as ray() rotates it.
+  [[nodiscard]] double beam_cos(std::size_t beam) const noexcept { return beam_cos_[beam]; }
+  [[nodiscard]] double beam_sin(std::size_t beam) const noexcept { return beam_sin_[beam]; }
   [[nodiscard]] std::size_t beams() const noexcept { return beam_cos_.size(); }
   [[nodiscard]] std::size_t particles() const noexcept { return batch_.particle_count(); }
   [[nodiscard]] float max_range() const noexcept { return batch_.max_range; }

@@ -1,0 +1,108 @@
+#pragma once
+/// \file
+/// Internal: exact casting of coherent rays in bundles. A tracking filter's particles sit close
+/// together with close headings, so the rays of one beam from a group of them sweep a narrow
+/// wedge of the map. One pass over the wedge's cells, in strips across its major axis in order
+/// of distance, finds the blocking cells any of the rays could meet (64 cells a read, from a
+/// bit mask); each ray is tested only against the blocks near its own path (a slab test), and
+/// is done after the first strip in which it hits. The ranges are the exact casters': the
+/// first wall on each ray, with walls reaching kSnapDistance past their ends as theirs do,
+/// whatever the grouping and the thread count.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "ray_setup.hpp"
+
+namespace mote::detail {
+
+/// The blocking mask one bit a cell, twice: rows (bit i of row j is cell (i, j)) and columns
+/// (bit j of column i), so a bundle reads the cells across its path 64 at a time along either
+/// axis. A zero word closes every line, so a read of 64 bits from any cell on it stays inside.
+class BitMask {
+ public:
+  explicit BitMask(const CellMask& mask);
+  /// Cells [first, first + 64) of major line `line` as bits (cells past the line's end are 0):
+  /// across column `line` when `along_x` (a bundle travelling along x), else across row `line`.
+  [[nodiscard]] std::uint64_t bits(bool along_x, int line, int first) const noexcept;
+  [[nodiscard]] std::size_t bytes() const noexcept {
+    return (rows_.size() + columns_.size()) * sizeof(std::uint64_t);
+  }
+
+ private:
+  std::size_t row_words_ = 0;
+  std::size_t column_words_ = 0;
+  std::vector<std::uint64_t> rows_;
+  std::vector<std::uint64_t> columns_;
+};
+
+/// Sensors per block side (cells) and heading bins over the circle that make one group.
+inline constexpr int kBundleBlockCells = 16;
+inline constexpr int kBundleHeadingBins = 720;
+
+/// The batch's particles grouped for bundles: sensors in one block of kBundleBlockCells cells a
+/// side whose headings fall in one bin. Particle order within a group and the groups' order
+/// depend on the particles' indices only.
+struct BundleGroups {
+  std::vector<SensorFrame> sensors;      ///< every particle's, computed once
+  std::vector<std::uint32_t> particles;  ///< grouped; group g is [starts[g], starts[g + 1])
+  std::vector<std::uint32_t> starts;
+  std::vector<std::uint8_t> grouped;  ///< per particle: 1 when in a group
+
+  [[nodiscard]] std::size_t count() const noexcept {
+    return starts.empty() ? 0 : starts.size() - 1;
+  }
+  [[nodiscard]] std::span<const std::uint32_t> group(std::size_t g) const noexcept {
+    return std::span(particles).subspan(starts[g], starts[g + 1] - starts[g]);
+  }
+};
+
+/// Groups of at least `min_size` sensors that are on the map, finite and not in a blocking
+/// cell; every other particle is left to the caller (grouped[p] == 0). Parallel over particles.
+[[nodiscard]] BundleGroups group_for_bundles(const BatchRays& rays, const CellMask& mask,
+                                             std::size_t grain, std::size_t min_size);
+
+/// The mean size of the groups of group_for_bundles, estimated from every k-th sensor so that
+/// at most `sample` are looked at (k = 1 for a batch no larger).
+[[nodiscard]] double mean_group_size(const BatchRays& rays, const CellMask& mask,
+                                     std::size_t sample);
+
+/// A group's working arrays, reused from group to group by one task.
+struct BundleScratch {
+  std::vector<float> gx, gy;  ///< the group's sensors (cells)
+  // The current beam's rays (the group's sensors `chosen`, all or those left to cast), in no
+  // order: origin and direction as traced (m, doubles), the same in cells, key and bucket,
+  // range found (cells).
+  std::vector<std::uint32_t> chosen;
+  std::vector<double> qx, qy, qdx, qdy;
+  std::vector<float> ox, oy, dx, dy, key, cells;
+  std::vector<std::uint32_t> bucket, order, fill;
+  // The open rays in buckets of key (bucket b is [starts[b], starts[b + 1])): origin,
+  // direction's reciprocal, how far a wall's end reaches along the ray per axis, nearest hit
+  // so far, the ray's place among the beam's rays.
+  std::vector<float> px, py, ix, iy, wx, wy, best;
+  std::vector<std::uint32_t> ray_of, starts;
+  float key_origin = 0.0F;  ///< the lowest key, floored
+  float key_top = 0.0F;     ///< the highest
+  struct Box {
+    float x0, x1, y0, y1;  ///< cells
+  };
+  std::vector<Box> boxes;
+};
+
+/// Beams [first, second) of a batch.
+using BeamRange = std::pair<std::size_t, std::size_t>;
+
+/// Casts the group's rays of `beams` into `ranges` (particle-major, metres): those of every
+/// particle, or with `only` just the rays whose range reads *only (those a table left to exact
+/// casting).
+void cast_bundle_group(const BatchRays& rays, const CellMask& mask, const BitMask& bits,
+                       const BundleGroups& groups, std::size_t group, std::span<float> ranges,
+                       BundleScratch& scratch, BeamRange beams,
+                       std::optional<float> only = std::nullopt);
+
+}  // namespace mote::detail

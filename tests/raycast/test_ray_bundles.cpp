@@ -1,0 +1,182 @@
+// Rays cast in bundles (raycast/src/ray_bundles.hpp) on the recorded maps: the exact grid
+// walk's ranges for tracking clouds and for scattered sensors, whatever group a sensor falls
+// in.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "grid_walk.hpp"
+#include "mote/maps/map_loader.hpp"
+#include "mote/raycast/ray_batch.hpp"
+#include "mote_test/data.hpp"
+#include "ray_bundles.hpp"
+#include "ray_setup.hpp"
+
+namespace mote {
+namespace {
+
+constexpr float kMaxRange = 30.0F;
+constexpr int kBeams = 60;
+
+struct Poses {
+  std::vector<float> x, y, theta;
+};
+
+/// `clouds` robots' particle clouds (`per_cloud` poses, sigma `spread` m and `turn` rad around
+/// a free pose each), as a tracking filter holds them.
+Poses clouds(const OccupancyGrid& grid, int clouds, int per_cloud, double spread, double turn,
+             unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<> u(0.0, 1.0);
+  std::normal_distribution<> n(0.0, 1.0);
+  const auto& free = grid.free_cells();
+  Poses p;
+  for (int c = 0; c < clouds; ++c) {
+    const Point2 centre = grid.free_point(
+        static_cast<std::size_t>(u(rng) * static_cast<double>(free.size())) % free.size(), 0.5,
+        0.5);
+    const double heading = (2.0 * u(rng) - 1.0) * std::numbers::pi;
+    for (int k = 0; k < per_cloud; ++k) {
+      p.x.push_back(static_cast<float>(centre.x + spread * n(rng)));
+      p.y.push_back(static_cast<float>(centre.y + spread * n(rng)));
+      p.theta.push_back(static_cast<float>(heading + turn * n(rng)));
+    }
+  }
+  return p;
+}
+
+std::vector<float> beam_angles() {
+  std::vector<float> b;
+  for (int k = 0; k < kBeams; ++k) {
+    b.push_back(static_cast<float>(-std::numbers::pi + 2.0 * std::numbers::pi * k / kBeams));
+  }
+  return b;
+}
+
+RayBatch batch_of(const Poses& p, const std::vector<float>& beams) {
+  return {p.x, p.y, p.theta, beams, Pose2{0.1, 0.0, 0.0}, kMaxRange};
+}
+
+/// The map's blocking mask and frame, as the casters hold them.
+struct MapView {
+  explicit MapView(const OccupancyGrid& grid)
+      : blocking(detail::blocking_mask(grid, true)),
+        mask{grid.width(), grid.height(), static_cast<float>(grid.resolution()), blocking.data()},
+        frame(grid.origin()),
+        bits(mask) {}
+  std::vector<std::uint8_t> blocking;
+  detail::CellMask mask;
+  detail::GridFrame frame;
+  detail::BitMask bits;
+};
+
+/// Every group of the batch cast in bundles; rays of sensors in no group keep `fill`.
+std::vector<float> cast_in_bundles(const MapView& v, const RayBatch& batch, float fill) {
+  std::vector<float> ranges(batch.ray_count(), fill);
+  const detail::BatchRays rays(v.frame, v.mask, batch, ranges.size());
+  const detail::BundleGroups groups = detail::group_for_bundles(rays, v.mask, 64, 1);
+  detail::BundleScratch scratch;
+  for (std::size_t g = 0; g < groups.count(); ++g) {
+    detail::cast_bundle_group(rays, v.mask, v.bits, groups, g, ranges, scratch, {0, rays.beams()});
+  }
+  return ranges;
+}
+
+void expect_grid_walk_ranges(const std::filesystem::path& yaml, double spread, double turn) {
+  const OccupancyGrid grid = load_map(yaml);
+  const MapView v(grid);
+  const std::vector<float> beams = beam_angles();
+  const Poses poses = clouds(grid, 12, 200, spread, turn, 7);
+  const RayBatch batch = batch_of(poses, beams);
+  const std::vector<float> got = cast_in_bundles(v, batch, -1.0F);
+  const detail::BatchRays rays(v.frame, v.mask, batch, got.size());
+  const double diagonal = grid.resolution() * std::numbers::sqrt2;
+  int cast = 0;
+  int hits = 0;
+  int off_1mm = 0;
+  int off_diagonal = 0;
+  for (std::size_t p = 0; p < rays.particles(); ++p) {
+    const detail::SensorFrame s = rays.sensor(p);
+    for (std::size_t b = 0; b < rays.beams(); ++b) {
+      const float r = got[p * rays.beams() + b];
+      if (r == -1.0F) continue;  // in a wall or off the map: not the bundles' rays
+      const float walk = detail::walk_grid(v.mask, rays.ray(s, b), kMaxRange);
+      ++cast;
+      hits += walk < kMaxRange ? 1 : 0;
+      off_1mm += std::abs(r - walk) > 1e-3F ? 1 : 0;
+      if (std::abs(r - walk) > diagonal && ++off_diagonal <= 5) {
+        ADD_FAILURE() << yaml.filename() << " sensor " << p << " pose " << poses.x[p] << " "
+                      << poses.y[p] << " " << poses.theta[p] << " beam " << b << ": bundles " << r
+                      << " m, grid walk " << walk << " m";
+      }
+    }
+  }
+  // Most sensors are in free space: a test of nothing cast would prove nothing.
+  EXPECT_GT(cast, static_cast<int>(batch.ray_count() / 2));
+  EXPECT_GT(hits, cast / 2);
+  EXPECT_EQ(off_diagonal, 0) << "of " << cast << " rays";
+  // Float cells against the walk's doubles: a ray grazing a wall may differ by a hair more.
+  EXPECT_LE(off_1mm, cast / 10000) << "of " << cast << " rays";
+}
+
+TEST(RayBundles, GridWalkRangesForTrackingCloudsOnIntel) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  expect_grid_walk_ranges(path, 0.1, 0.05);
+}
+
+TEST(RayBundles, GridWalkRangesForTrackingCloudsOnWillow) {
+  MOTE_REQUIRE_DATA(path, "maps/willow-full-0.05.yaml");
+  expect_grid_walk_ranges(path, 0.1, 0.05);
+}
+
+TEST(RayBundles, GridWalkRangesForScatteredSensorsOnIntel) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  expect_grid_walk_ranges(path, 3.0, 3.0);  // groups of one or two
+}
+
+TEST(RayBundles, ARangeDoesNotDependOnTheGroupItWasCastIn) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  const OccupancyGrid grid = load_map(path);
+  const MapView v(grid);
+  const std::vector<float> beams = beam_angles();
+  const Poses poses = clouds(grid, 3, 150, 0.1, 0.05, 11);
+  const std::vector<float> together = cast_in_bundles(v, batch_of(poses, beams), -1.0F);
+  for (std::size_t p = 0; p < poses.x.size(); p += 7) {
+    const Poses one{{poses.x[p]}, {poses.y[p]}, {poses.theta[p]}};
+    const std::vector<float> alone = cast_in_bundles(v, batch_of(one, beams), -1.0F);
+    for (std::size_t b = 0; b < beams.size(); ++b) {
+      ASSERT_EQ(alone[b], together[p * beams.size() + b]) << "sensor " << p << " beam " << b;
+    }
+  }
+}
+
+TEST(RayBundles, OnlyTheRaysLeftToCastAreCast) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  const OccupancyGrid grid = load_map(path);
+  const MapView v(grid);
+  const std::vector<float> beams = beam_angles();
+  const Poses poses = clouds(grid, 1, 100, 0.1, 0.05, 5);
+  const RayBatch batch = batch_of(poses, beams);
+  const std::vector<float> all = cast_in_bundles(v, batch, -1.0F);
+  // Every third ray marked as left to cast, the others holding a value the cast must keep.
+  std::vector<float> some(all.size());
+  for (std::size_t k = 0; k < some.size(); ++k) some[k] = k % 3 == 0 ? -1.0F : 123.0F;
+  const detail::BatchRays rays(v.frame, v.mask, batch, some.size());
+  const detail::BundleGroups groups = detail::group_for_bundles(rays, v.mask, 64, 1);
+  detail::BundleScratch scratch;
+  for (std::size_t g = 0; g < groups.count(); ++g) {
+    detail::cast_bundle_group(rays, v.mask, v.bits, groups, g, some, scratch, {0, rays.beams()},
+                              -1.0F);
+  }
+  for (std::size_t k = 0; k < some.size(); ++k) {
+    ASSERT_EQ(some[k], k % 3 == 0 ? all[k] : 123.0F) << "ray " << k;
+  }
+}
+
+}  // namespace
+}  // namespace mote
