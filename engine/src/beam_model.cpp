@@ -25,7 +25,7 @@ void BeamModel::expected_ranges(const RayBatch& batch, std::span<float> ranges) 
 }
 
 void BeamModel::prepare(const BeamSet& beams, const ParticleView& particles) const {
-  if (!table_ || table_->stats().tile_cells == 0) return;
+  if (!table_) return;  // the table builds tiles, or chooses how to cast uncertified rays
   table_->prepare(RayBatch{.x = {particles.x, particles.count},
                            .y = {particles.y, particles.count},
                            .theta = {particles.theta, particles.count},

@@ -155,7 +155,7 @@ bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
       kTileCells * static_cast<std::size_t>(options.angles) * sizeof(std::uint16_t);
   const std::size_t tile_count = detail::TileSet::count_for(width, height);
   const std::size_t fixed =
-      blocking.size() + walls->bytes() + tile_count * detail::TileSet::kBookkeepingBytes;
+      blocking.size() + exact_bytes() + tile_count * detail::TileSet::kBookkeepingBytes;
   // A sensor's 3 x 3 candidate cells can span 4 tiles; fewer resident tiles would thrash.
   constexpr std::size_t kMinResident = 4;
   if (fixed + kMinResident * tile_bytes <= options.memory_budget_bytes) {
@@ -181,7 +181,8 @@ void RangeTable::Impl::build() {
   stats.angles = options.angles;
   stats.units_per_cell = units_for(width, height);
   if (casts_exactly()) walls = std::make_unique<detail::WallScene>(m);
-  const std::size_t scene_bytes = walls ? walls->bytes() : 0;
+  if (options.certify) bits = std::make_unique<detail::BitMask>(m);
+  const std::size_t scene_bytes = exact_bytes();
   // Tiles when the whole table on every cell is over budget.
   const bool whole_fits = detail::table_bytes(detail::count_lattice_points(m, 1), blocking.size(),
                                               blocking.size(), options.angles) +

@@ -4,6 +4,7 @@
 /// the build (range_table.cpp) and the queries (range_table_query.cpp).
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -16,6 +17,7 @@
 #include "mote/raycast/range_table.hpp"
 #include "range_table_layout.hpp"
 #include "range_table_tiles.hpp"
+#include "ray_bundles.hpp"
 #include "ray_setup.hpp"
 #include "wall_scene.hpp"
 
@@ -76,6 +78,10 @@ struct RangeTable::Impl {
   std::vector<std::uint8_t> blocking;
   /// The exact caster's scene, for the rays of uncertified entries.
   std::unique_ptr<detail::WallScene> walls;
+  /// The map as bits, for casting the rays of uncertified entries in bundles (certify only).
+  std::unique_ptr<detail::BitMask> bits;
+  /// What the last prepare decided for cast_prepared: bundles (true) or Embree.
+  mutable std::atomic<bool> prepared_bundles{false};
   detail::TableLayout layout;  ///< the lattice of a whole table (empty when tiled)
   /// Tiles built on first use, when the whole table at a lattice of every cell is over budget:
   /// then a slot is TileSet::slot of its cell, and `ranges` is the tiles' reservation.
@@ -137,22 +143,39 @@ struct RangeTable::Impl {
                      float* out) const noexcept;
   [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
   /// Casts particles [begin, end) of a batch; rays of uncertified entries go to `exact` (a
-  /// Packet16), or nowhere when the table is not certified.
+  /// Packet16), or nowhere when the table is not certified, but for particles p with
+  /// bundled[p] set (when given), whose rays stay at kCastExactly.
   template <class Wrap, class Exact>
   void cast_chunk(const detail::BatchRays& rays, const detail::CellMask& m,
                   std::span<const double> beam_index, const Wrap& wrap, std::size_t begin,
-                  std::size_t end, std::span<float> out_ranges, Exact* exact) const;
+                  std::size_t end, std::span<float> out_ranges, Exact* exact,
+                  std::span<const std::uint8_t> bundled = {}) const;
   /// cast_chunk with the exact caster: rays of uncertified entries, queued in particle order
   /// within the chunk, so which rays share a packet depends on the grain only (design.md 3).
+  /// Those of particles in `bundled` (when given) are left reading kCastExactly, for bundles.
   template <class Wrap>
   void cast_chunk_certified(const detail::BatchRays& rays, const detail::CellMask& m,
                             std::span<const double> beam_index, const Wrap& wrap, std::size_t begin,
-                            std::size_t end, std::span<float> out_ranges) const {
+                            std::size_t end, std::span<float> out_ranges,
+                            std::span<const std::uint8_t> bundled) const {
     const detail::FlushDenormals denormals_off;
     detail::Packet16 exact(walls->scene(), rays.max_range(), out_ranges);
-    cast_chunk(rays, m, beam_index, wrap, begin, end, out_ranges, &exact);
+    cast_chunk(rays, m, beam_index, wrap, begin, end, out_ranges, &exact, bundled);
     exact.flush();
     detail::check_embree_thread("casting rays");
+  }
+  /// Whether sensors gather enough for bundles to beat Embree, from their groups' mean size
+  /// (measured: the beam model tracking on Intel at 10k particles has groups of about 170 and
+  /// gains; bench_raycast's tracking cloud, 0.2 rad of heading, about 5 and loses).
+  [[nodiscard]] static bool gathers(double mean_group_size) noexcept {
+    return mean_group_size >= 64.0;
+  }
+  /// The rays the chunks left reading kCastExactly, cast in bundles (parallel over groups).
+  void cast_bundles(const detail::BatchRays& rays, const detail::CellMask& m,
+                    const detail::BundleGroups& groups, std::span<float> out_ranges) const;
+  /// Bytes of what casts exactly beside the table: the Embree scene and the bit mask.
+  [[nodiscard]] std::size_t exact_bytes() const noexcept {
+    return (walls ? walls->bytes() : 0) + (bits ? bits->bytes() : 0);
   }
 };
 

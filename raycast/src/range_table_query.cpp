@@ -34,6 +34,11 @@ using detail::kLeavesMap;
 using detail::kMissing;
 using detail::nearest_angle;
 
+namespace {
+/// Beams per bundle task.
+constexpr std::size_t kBundleBeams = 15;
+}  // namespace
+
 Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) const noexcept {
   Candidates c;
   c.missing.fill(kMissing);
@@ -253,7 +258,7 @@ template <class Wrap, class Exact>
 void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::CellMask& m,
                                   std::span<const double> beam_index, const Wrap& wrap,
                                   std::size_t begin, std::size_t end, std::span<float> out_ranges,
-                                  Exact* exact) const {
+                                  Exact* exact, std::span<const std::uint8_t> bundled) const {
   const std::size_t beams = rays.beams();
   const double per_rad = options.angles / (2.0 * std::numbers::pi);
   std::vector<Choice> choices(beams);
@@ -290,12 +295,29 @@ void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::C
         choose(c, heading, beam_index, scratch, choices);
         for (std::size_t b = 0; b < beams; ++b) out[b] = read(choices[b], rays.max_range());
       }
-      if (exact == nullptr) continue;
+      if (exact == nullptr || (!bundled.empty() && bundled[p] != 0)) continue;
       for (std::size_t b = 0; b < beams; ++b) {
         if (out[b] == kCastExactly) exact->add(rays.ray(s, b), p * beams + b);
       }
     }
   }
+}
+
+void RangeTable::Impl::cast_bundles(const detail::BatchRays& rays, const detail::CellMask& m,
+                                    const detail::BundleGroups& groups,
+                                    std::span<float> out_ranges) const {
+  // One task per group and block of beams (what a task does depends on neither the thread
+  // count nor the grain, and every ray's range on nothing but the ray).
+  const std::size_t beams = rays.beams();
+  const std::size_t blocks = (beams + kBundleBeams - 1) / kBundleBeams;
+  par::for_each_chunk(groups.count() * blocks, 1, [&](std::size_t begin, std::size_t end) {
+    detail::BundleScratch scratch;
+    for (std::size_t item = begin; item < end; ++item) {
+      const std::size_t first = item % blocks * kBundleBeams;
+      detail::cast_bundle_group(rays, m, *bits, groups, item / blocks, out_ranges, scratch,
+                                {first, std::min(beams, first + kBundleBeams)}, kCastExactly);
+    }
+  });
 }
 
 void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tiles mode) const {
@@ -311,15 +333,28 @@ void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tile
   };
   for (std::size_t b = 0; b < beams; ++b) beam_index[b] = wrap(batch.beam_angles[b] * per_rad);
   const auto cast_all = [&] {
-    par::for_each_chunk(rays.particles(), t.options.particle_grain,
-                        [&](std::size_t begin, std::size_t end) {
-                          if (t.walls) {
-                            t.cast_chunk_certified(rays, m, beam_index, wrap, begin, end, ranges);
-                          } else {
-                            t.cast_chunk<decltype(wrap), detail::Packet16>(
-                                rays, m, beam_index, wrap, begin, end, ranges, nullptr);
-                          }
-                        });
+    // A certified table's uncertified rays: in bundles when the sensors gather (decided on the
+    // whole set in prepare for cast_prepared), else Embree. Either way all of them: a ray's
+    // range then does not depend on which sensors share its part of the set.
+    detail::BundleGroups groups;
+    const bool prepared = mode == Tiles::kRead;
+    if (t.bits && (!prepared || t.prepared_bundles.load(std::memory_order_relaxed))) {
+      groups = detail::group_for_bundles(rays, m, t.options.particle_grain, 1);
+      const double mean = groups.count() == 0 ? 0.0
+                                              : static_cast<double>(groups.particles.size()) /
+                                                    static_cast<double>(groups.count());
+      if (!prepared && !Impl::gathers(mean)) groups = {};
+    }
+    par::for_each_chunk(
+        rays.particles(), t.options.particle_grain, [&](std::size_t begin, std::size_t end) {
+          if (t.walls) {
+            t.cast_chunk_certified(rays, m, beam_index, wrap, begin, end, ranges, groups.grouped);
+          } else {
+            t.cast_chunk<decltype(wrap), detail::Packet16>(rays, m, beam_index, wrap, begin, end,
+                                                           ranges, nullptr);
+          }
+        });
+    if (groups.count() > 0) t.cast_bundles(rays, m, groups, ranges);
   };
   if (!t.tiles) {
     cast_all();
@@ -350,10 +385,16 @@ void RangeTable::cast_prepared(const RayBatch& batch, std::span<float> ranges) c
 
 void RangeTable::prepare(const RayBatch& batch) const {
   const Impl& t = *impl_;
-  if (!t.tiles) return;
+  if (!t.tiles && !t.bits) return;
   const detail::GridFrame frame(t.origin);
   const detail::CellMask m = t.mask();
   const detail::BatchRays rays(frame, m, batch, batch.ray_count());  // no ranges to check
+  if (t.bits) {
+    constexpr std::size_t kSample = 4096;
+    t.prepared_bundles.store(Impl::gathers(detail::mean_group_size(rays, m, kSample)),
+                             std::memory_order_relaxed);
+  }
+  if (!t.tiles) return;
   const std::unique_lock lock(t.tiles->mutex());
   tbb::this_task_arena::isolate([&] { t.prepare_tiles(rays, m); });
 }

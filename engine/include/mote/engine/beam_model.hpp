@@ -35,9 +35,10 @@ class BeamModel {
   BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
             const std::optional<RangeTableOptions>& table = std::nullopt);
 
-  /// With a range table built in tiles: makes resident the tiles the particles' sensors need
-  /// (RangeTable::prepare), so that weigh() on concurrent chunks only reads the table and the
-  /// result does not depend on the order they run in. Call before weigh() from one thread;
+  /// With a range table: makes resident the tiles the particles' sensors need and chooses how
+  /// a certified table casts its uncertified rays (RangeTable::prepare), so that weigh() on
+  /// concurrent chunks only reads the table and the result depends neither on the order they
+  /// run in nor on how the particles are chunked. Call before weigh() from one thread;
   /// otherwise a no-op.
   void prepare(const BeamSet& beams, const ParticleView& particles) const;
 

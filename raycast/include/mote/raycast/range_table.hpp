@@ -25,8 +25,10 @@ struct RangeTableOptions {
   /// points) until the table fits; ConfigError when even the coarsest lattice does not.
   std::size_t memory_budget_bytes = std::size_t{256} << 20U;
   std::size_t particle_grain = 64;  ///< as RayCastOptions::particle_grain
-  /// Certify entries at build time and cast the rays of uncertified ones exactly, with Embree
-  /// (the scene is built beside the table and counted in its bytes). Entries then answer by
+  /// Certify entries at build time and cast the rays of uncertified ones exactly (the Embree
+  /// scene and a bit mask of the map are built beside the table and counted in its bytes): in
+  /// bundles (raycast/src/ray_bundles.hpp) when the batch's sensors gather in groups of a
+  /// neighbourhood and a heading, else with Embree. Entries then answer by
   /// interpolating between the two table directions around the ray. Off: every ray reads the
   /// table, at the nearest direction, fastest and least accurate (BENCHMARKS.md, "Range table").
   bool certify = false;
@@ -91,7 +93,10 @@ class RangeTable {
   /// cast_prepared(each part) from any, which reads the table without building or evicting
   /// (rays of sensors whose tiles are not resident are cast exactly) and runs concurrently.
   /// Which tiles are resident then depends on the whole set, not on the order the parts run
-  /// in. Without tiles prepare does nothing and cast_prepared is cast.
+  /// in. A certified table also decides there, from the whole set, whether the rays of its
+  /// uncertified entries are cast in bundles (when the sensors gather, as a tracking filter's
+  /// do) or with Embree, so that the parts' ranges do not depend on how the set is cut. A
+  /// table neither tiled nor certified does nothing in prepare, and cast_prepared is cast.
   void prepare(const RayBatch& batch) const;
   void cast_prepared(const RayBatch& batch, std::span<float> ranges) const;
   /// Same contract as RayCaster::cast_one.
