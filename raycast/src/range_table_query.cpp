@@ -340,10 +340,7 @@ void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tile
     const bool prepared = mode == Tiles::kRead;
     if (t.bits && (!prepared || t.prepared_bundles.load(std::memory_order_relaxed))) {
       groups = detail::group_for_bundles(rays, m, t.options.particle_grain, 1);
-      const double mean = groups.count() == 0 ? 0.0
-                                              : static_cast<double>(groups.particles.size()) /
-                                                    static_cast<double>(groups.count());
-      if (!prepared && !Impl::gathers(mean)) groups = {};
+      if (!prepared && !Impl::gathers(groups.mean_size())) groups = {};
     }
     par::for_each_chunk(
         rays.particles(), t.options.particle_grain, [&](std::size_t begin, std::size_t end) {

@@ -56,6 +56,10 @@ struct BundleGroups {
   [[nodiscard]] std::size_t count() const noexcept {
     return starts.empty() ? 0 : starts.size() - 1;
   }
+  [[nodiscard]] double mean_size() const noexcept {
+    return count() == 0 ? 0.0
+                        : static_cast<double>(particles.size()) / static_cast<double>(count());
+  }
   [[nodiscard]] std::span<const std::uint32_t> group(std::size_t g) const noexcept {
     return std::span(particles).subspan(starts[g], starts[g + 1] - starts[g]);
   }
@@ -82,8 +86,8 @@ struct BundleScratch {
   std::vector<float> ox, oy, dx, dy, key, cells;
   std::vector<std::uint32_t> bucket, order, fill;
   // The open rays in buckets of key (bucket b is [starts[b], starts[b + 1])): origin,
-  // direction's reciprocal, how far a wall's end reaches along the ray per axis, nearest hit
-  // so far, the ray's place among the beam's rays.
+  // direction's reciprocal, the near-miss window (near_window) along the ray per axis, nearest
+  // hit so far, the ray's place among the beam's rays.
   std::vector<float> px, py, ix, iy, wx, wy, best;
   std::vector<std::uint32_t> ray_of, starts;
   float key_origin = 0.0F;  ///< the lowest key, floored
