@@ -164,15 +164,6 @@ struct RangeTable::Impl {
     exact.flush();
     detail::check_embree_thread("casting rays");
   }
-  /// Whether sensors gather enough for bundles to beat Embree, from their groups' mean size
-  /// (measured: the beam model tracking on Intel at 10k particles has groups of about 170 and
-  /// gains; bench_raycast's tracking cloud, 0.2 rad of heading, about 5 and loses).
-  [[nodiscard]] static bool gathers(double mean_group_size) noexcept {
-    return mean_group_size >= 64.0;
-  }
-  /// The rays the chunks left reading kCastExactly, cast in bundles (parallel over groups).
-  void cast_bundles(const detail::BatchRays& rays, const detail::CellMask& m,
-                    const detail::BundleGroups& groups, std::span<float> out_ranges) const;
   /// Bytes of what casts exactly beside the table: the Embree scene and the bit mask.
   [[nodiscard]] std::size_t exact_bytes() const noexcept {
     return (walls ? walls->bytes() : 0) + (bits ? bits->bytes() : 0);

@@ -34,11 +34,6 @@ using detail::kLeavesMap;
 using detail::kMissing;
 using detail::nearest_angle;
 
-namespace {
-/// Beams per bundle task.
-constexpr std::size_t kBundleBeams = 15;
-}  // namespace
-
 Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) const noexcept {
   Candidates c;
   c.missing.fill(kMissing);
@@ -303,23 +298,6 @@ void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::C
   }
 }
 
-void RangeTable::Impl::cast_bundles(const detail::BatchRays& rays, const detail::CellMask& m,
-                                    const detail::BundleGroups& groups,
-                                    std::span<float> out_ranges) const {
-  // One task per group and block of beams (what a task does depends on neither the thread
-  // count nor the grain, and every ray's range on nothing but the ray).
-  const std::size_t beams = rays.beams();
-  const std::size_t blocks = (beams + kBundleBeams - 1) / kBundleBeams;
-  par::for_each_chunk(groups.count() * blocks, 1, [&](std::size_t begin, std::size_t end) {
-    detail::BundleScratch scratch;
-    for (std::size_t item = begin; item < end; ++item) {
-      const std::size_t first = item % blocks * kBundleBeams;
-      detail::cast_bundle_group(rays, m, *bits, groups, item / blocks, out_ranges, scratch,
-                                {first, std::min(beams, first + kBundleBeams)}, kCastExactly);
-    }
-  });
-}
-
 void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tiles mode) const {
   const Impl& t = *impl_;
   const detail::GridFrame frame(t.origin);
@@ -340,7 +318,7 @@ void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tile
     const bool prepared = mode == Tiles::kRead;
     if (t.bits && (!prepared || t.prepared_bundles.load(std::memory_order_relaxed))) {
       groups = detail::group_for_bundles(rays, m, t.options.particle_grain, 1);
-      if (!prepared && !Impl::gathers(groups.mean_size())) groups = {};
+      if (!prepared && !detail::bundles_pay(groups.mean_size())) groups = {};
     }
     par::for_each_chunk(
         rays.particles(), t.options.particle_grain, [&](std::size_t begin, std::size_t end) {
@@ -351,7 +329,7 @@ void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tile
                                                            ranges, nullptr);
           }
         });
-    if (groups.count() > 0) t.cast_bundles(rays, m, groups, ranges);
+    if (groups.count() > 0) detail::cast_bundles(rays, m, *t.bits, groups, ranges, kCastExactly);
   };
   if (!t.tiles) {
     cast_all();
@@ -387,9 +365,7 @@ void RangeTable::prepare(const RayBatch& batch) const {
   const detail::CellMask m = t.mask();
   const detail::BatchRays rays(frame, m, batch, batch.ray_count());  // no ranges to check
   if (t.bits) {
-    constexpr std::size_t kSample = 4096;
-    t.prepared_bundles.store(Impl::gathers(detail::mean_group_size(rays, m, kSample)),
-                             std::memory_order_relaxed);
+    t.prepared_bundles.store(detail::bundles_pay(rays, m), std::memory_order_relaxed);
   }
   if (!t.tiles) return;
   const std::unique_lock lock(t.tiles->mutex());

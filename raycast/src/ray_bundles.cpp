@@ -23,6 +23,8 @@ constexpr float kNoHit = std::numeric_limits<float>::infinity();
 constexpr float kParallel = 1.0e30F;
 /// Slack (cells) on the bounds that pick a box's rays: float rounding of keys and slopes.
 constexpr float kKeySlack = 1.0e-3F;
+/// Beams per task of cast_bundles.
+constexpr std::size_t kBundleBeams = 15;
 
 /// How far (cells) past a box's corner a ray may pass and still be decided exactly
 /// (reach_past_corner): the walls' reach, kSnapDistance, plus what float cells may be off by on
@@ -480,6 +482,20 @@ void cast_bundle_group(const BatchRays& rays, const CellMask& m, const BitMask& 
           c == kNoHit ? max_range : std::min(c * m.resolution, max_range);
     }
   }
+}
+
+void cast_bundles(const BatchRays& rays, const CellMask& m, const BitMask& bits,
+                  const BundleGroups& groups, std::span<float> ranges, std::optional<float> only) {
+  const std::size_t beams = rays.beams();
+  const std::size_t blocks = (beams + kBundleBeams - 1) / kBundleBeams;
+  par::for_each_chunk(groups.count() * blocks, 1, [&](std::size_t begin, std::size_t end) {
+    BundleScratch scratch;
+    for (std::size_t item = begin; item < end; ++item) {
+      const std::size_t first = item % blocks * kBundleBeams;
+      cast_bundle_group(rays, m, bits, groups, item / blocks, ranges, scratch,
+                        {first, std::min(beams, first + kBundleBeams)}, only);
+    }
+  });
 }
 
 }  // namespace mote::detail

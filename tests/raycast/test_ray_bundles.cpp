@@ -1,8 +1,8 @@
 // Rays cast in bundles (raycast/src/ray_bundles.hpp) on the recorded maps: the exact grid
 // walk's ranges for tracking clouds and for scattered sensors, whatever group a sensor falls
 // in; and a certified range table that casts its uncertified rays in bundles for gathered
-// sensors reads the grid walk's ranges there, the same whole or in prepared parts, on 1 or 2
-// threads.
+// sensors, and the Embree caster that casts all of theirs so, read the grid walk's ranges
+// there, the same whole or in prepared parts, on 1 or 2 threads.
 
 #include <gtest/gtest.h>
 #include <oneapi/tbb/task_arena.h>
@@ -17,6 +17,7 @@
 #include "mote/maps/map_loader.hpp"
 #include "mote/raycast/grid_ray_caster.hpp"
 #include "mote/raycast/range_table.hpp"
+#include "mote/raycast/ray_caster.hpp"
 #include "mote_test/data.hpp"
 #include "ray_bundles.hpp"
 #include "ray_setup.hpp"
@@ -182,6 +183,30 @@ TEST(RayBundles, OnlyTheRaysLeftToCastAreCast) {
   }
 }
 
+/// A caster's ranges prepared on the whole set and cast in two parts, in an arena of `threads`.
+template <class Caster>
+std::vector<float> prepared_in_two_parts(const Caster& caster, const Poses& poses,
+                                         const std::vector<float>& beams, int threads) {
+  std::vector<float> parts(poses.x.size() * beams.size());
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    caster.prepare(batch_of(poses, beams));
+    const std::size_t half = poses.x.size() / 2;
+    const auto part = [&](std::size_t begin, std::size_t end) {
+      const Poses some{
+          {poses.x.begin() + std::ptrdiff_t(begin), poses.x.begin() + std::ptrdiff_t(end)},
+          {poses.y.begin() + std::ptrdiff_t(begin), poses.y.begin() + std::ptrdiff_t(end)},
+          {poses.theta.begin() + std::ptrdiff_t(begin), poses.theta.begin() + std::ptrdiff_t(end)}};
+      caster.cast_prepared(
+          batch_of(some, beams),
+          std::span(parts).subspan(begin * beams.size(), (end - begin) * beams.size()));
+    };
+    part(0, half);
+    part(half, poses.x.size());
+  });
+  return parts;
+}
+
 /// A certified table at 64 angles (small, so sanitizer builds stay quick).
 RangeTableOptions certified() {
   RangeTableOptions o;
@@ -225,26 +250,55 @@ TEST(RangeTableCertified, GatheredSensorsReadTheGridWalksRangesFromBundles) {
 
   // The same ranges prepared on the whole set and read in two parts, on 1 or 2 threads.
   for (const int threads : {1, 2}) {
-    tbb::task_arena arena(threads);
-    std::vector<float> parts(got.size());
-    arena.execute([&] {
-      table.prepare(batch);
-      const std::size_t half = poses.x.size() / 2;
-      const auto part = [&](std::size_t begin, std::size_t end) {
-        const RayBatch b{std::span(poses.x).subspan(begin, end - begin),
-                         std::span(poses.y).subspan(begin, end - begin),
-                         std::span(poses.theta).subspan(begin, end - begin),
-                         beams,
-                         batch.sensor_offset,
-                         kMaxRange};
-        table.cast_prepared(
-            b, std::span(parts).subspan(begin * beams.size(), (end - begin) * beams.size()));
-      };
-      part(0, half);
-      part(half, poses.x.size());
-    });
-    EXPECT_EQ(parts, got) << threads << " threads";
+    EXPECT_EQ(prepared_in_two_parts(table, poses, beams, threads), got) << threads << " threads";
   }
+}
+
+TEST(RayCasterPrepared, GatheredSensorsReadTheGridWalksRangesFromBundles) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  const OccupancyGrid grid = load_map(path);
+  const RayCaster caster(grid);
+  const std::vector<float> beams = beam_angles();
+  const Poses poses = clouds(grid, 1, 3000, 0.05, 0.01, 5);
+  const RayBatch batch = batch_of(poses, beams);
+  std::vector<float> embree(batch.ray_count());
+  caster.cast(batch, embree);
+  std::vector<float> got(batch.ray_count());
+  caster.prepare(batch);
+  caster.cast_prepared(batch, got);
+  const GridRayCaster walk(grid);
+  std::vector<float> walked(batch.ray_count());
+  walk.cast(batch, walked);
+  const auto diagonal = static_cast<float>(std::numbers::sqrt2 * grid.resolution());
+  int differ = 0;
+  int off_walk = 0;
+  int off_embree = 0;
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    differ += got[k] != embree[k] ? 1 : 0;
+    off_walk += std::abs(got[k] - walked[k]) > 1e-3F ? 1 : 0;
+    off_embree += std::abs(got[k] - embree[k]) > diagonal ? 1 : 0;
+  }
+  // Cast in bundles (arithmetic other than Embree's in the last bits), the grid walk's ranges,
+  // and Embree's within a cell diagonal but at ties at a wall's reach (one in 10 000 at most).
+  EXPECT_GT(differ, 0) << "no ray was cast in bundles";
+  EXPECT_LE(off_walk, static_cast<int>(got.size() / 10000));
+  EXPECT_LE(off_embree, static_cast<int>(got.size() / 10000));
+  for (const int threads : {1, 2}) {
+    EXPECT_EQ(prepared_in_two_parts(caster, poses, beams, threads), got) << threads << " threads";
+  }
+}
+
+TEST(RayCasterPrepared, ScatteredSensorsStayOnEmbree) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  const OccupancyGrid grid = load_map(path);
+  const RayCaster caster(grid);
+  const std::vector<float> beams = beam_angles();
+  // A global localization's particles: no group comes near the size where bundles pay.
+  const Poses poses = clouds(grid, 300, 10, 1.0, 3.0, 6);
+  const RayBatch batch = batch_of(poses, beams);
+  std::vector<float> embree(batch.ray_count());
+  caster.cast(batch, embree);
+  EXPECT_EQ(prepared_in_two_parts(caster, poses, beams, 2), embree);
 }
 
 }  // namespace
