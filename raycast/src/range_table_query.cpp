@@ -318,7 +318,7 @@ void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tile
     const bool prepared = mode == Tiles::kRead;
     if (t.bits && (!prepared || t.prepared_bundles.load(std::memory_order_relaxed))) {
       groups = detail::group_for_bundles(rays, m, t.options.particle_grain, 1);
-      if (!prepared && !detail::bundles_pay(groups.mean_size())) groups = {};
+      if (!prepared && groups.mean_size() < detail::kBundlesPayForSomeRays) groups = {};
     }
     par::for_each_chunk(
         rays.particles(), t.options.particle_grain, [&](std::size_t begin, std::size_t end) {
@@ -365,7 +365,8 @@ void RangeTable::prepare(const RayBatch& batch) const {
   const detail::CellMask m = t.mask();
   const detail::BatchRays rays(frame, m, batch, batch.ray_count());  // no ranges to check
   if (t.bits) {
-    t.prepared_bundles.store(detail::bundles_pay(rays, m), std::memory_order_relaxed);
+    t.prepared_bundles.store(detail::bundles_pay(rays, m, detail::kBundlesPayForSomeRays),
+                             std::memory_order_relaxed);
   }
   if (!t.tiles) return;
   const std::unique_lock lock(t.tiles->mutex());

@@ -40,13 +40,16 @@ class BitMask {
   std::vector<std::uint64_t> columns_;
 };
 
-/// Sensors per block side (cells) and heading bins over the circle that make one group.
-inline constexpr int kBundleBlockCells = 16;
-inline constexpr int kBundleHeadingBins = 720;
+/// How sensors make one group: those in one block of `block_cells` cells a side whose headings
+/// fall in one of `heading_bins` bins over the circle. Finer groups make narrower wedges (fewer
+/// blocks tested per ray), coarser ones fuller bundles (a strip's cells read for more rays).
+struct BundleGrouping {
+  int heading_bins = 720;
+  int block_cells = 16;
+};
 
-/// The batch's particles grouped for bundles: sensors in one block of kBundleBlockCells cells a
-/// side whose headings fall in one bin. Particle order within a group and the groups' order
-/// depend on the particles' indices only.
+/// The batch's particles grouped for bundles. Particle order within a group and the groups'
+/// order depend on the particles' indices only.
 struct BundleGroups {
   std::vector<SensorFrame> sensors;      ///< every particle's, computed once
   std::vector<std::uint32_t> particles;  ///< grouped; group g is [starts[g], starts[g + 1])
@@ -68,12 +71,18 @@ struct BundleGroups {
 /// Groups of at least `min_size` sensors that are on the map, finite and not in a blocking
 /// cell; every other particle is left to the caller (grouped[p] == 0). Parallel over particles.
 [[nodiscard]] BundleGroups group_for_bundles(const BatchRays& rays, const CellMask& mask,
-                                             std::size_t grain, std::size_t min_size);
+                                             std::size_t grain, std::size_t min_size,
+                                             BundleGrouping grouping = {});
 
-/// The mean size of the groups of group_for_bundles, estimated from every k-th sensor so that
-/// at most `sample` are looked at (k = 1 for a batch no larger).
-[[nodiscard]] double mean_group_size(const BatchRays& rays, const CellMask& mask,
-                                     std::size_t sample);
+/// The mean size of the groups of group_for_bundles under each grouping, estimated from every
+/// k-th sensor so that at most `sample` are looked at (k = 1 for a batch no larger).
+[[nodiscard]] std::vector<double> mean_group_sizes(const BatchRays& rays, const CellMask& mask,
+                                                   std::size_t sample,
+                                                   std::span<const BundleGrouping> groupings);
+[[nodiscard]] inline double mean_group_size(const BatchRays& rays, const CellMask& mask,
+                                            std::size_t sample, BundleGrouping grouping = {}) {
+  return mean_group_sizes(rays, mask, sample, {&grouping, 1}).front();
+}
 
 /// A group's working arrays, reused from group to group by one task.
 struct BundleScratch {
@@ -116,19 +125,26 @@ void cast_bundles(const BatchRays& rays, const CellMask& mask, const BitMask& bi
                   const BundleGroups& groups, std::span<float> ranges,
                   std::optional<float> only = std::nullopt);
 
-/// Whether sensors gather enough for bundles to beat Embree, from their groups' mean size
-/// (measured: the beam model tracking on Intel at 10k particles has groups of about 170 and
-/// gains, with a certified table's uncertified rays and with every ray; bench_raycast's tracking
-/// cloud, 0.2 rad of heading, about 5 and loses).
-[[nodiscard]] inline bool bundles_pay(double mean_group_size) noexcept {
-  return mean_group_size >= 64.0;
-}
+/// The groups' mean size from which casting a certified table's uncertified third of the rays
+/// in bundles (finest grouping) beats Embree (measured: the beam model tracking on Intel at 10k
+/// particles, groups of about 170, gains; bench_raycast's tracking cloud, 0.2 rad of heading,
+/// groups of about 5, loses).
+inline constexpr double kBundlesPayForSomeRays = 64.0;
 
-/// bundles_pay for a whole batch, its groups' mean size estimated from at most 4096 sensors:
-/// the choice a caster makes once per update, before casting the batch in parts.
-[[nodiscard]] inline bool bundles_pay(const BatchRays& rays, const CellMask& mask) {
-  constexpr std::size_t kSample = 4096;
-  return bundles_pay(mean_group_size(rays, mask, kSample));
-}
+/// Whether a whole batch's sensors gather into groups (finest grouping) of at least `min_mean`
+/// on average, the mean estimated from at most 4096 sensors: the choice a caster makes once per
+/// update, before casting the batch in parts.
+[[nodiscard]] bool bundles_pay(const BatchRays& rays, const CellMask& mask, double min_mean);
+
+/// The grouping in which casting every ray of the batch in bundles beats Embree the most, or
+/// none when Embree is faster: the finest grouping whose groups hold kFullBundle sensors on
+/// average, else the coarsest if its groups reach kCoarsestPays (the sizes where bundles beat
+/// Embree in each grouping rise as the groups coarsen). Estimated from at most 4096 sensors, once
+/// per update. Measured (scratch program, 10k-sensor clouds, Intel, 2 threads, M rays/s):
+/// 5 cm / 0.02 rad clouds 39 finest against Embree's 18; 0.2 m / 0.08 rad 25 finest, 37 in
+/// 2-degree bins, Embree 17; 0.4 m / 0.16 rad 12 finest, 24 in 2-degree bins and blocks of 32,
+/// Embree 16; 0.8 m / 0.32 rad 13 at best against 15.
+[[nodiscard]] std::optional<BundleGrouping> grouping_for_every_ray(const BatchRays& rays,
+                                                                   const CellMask& mask);
 
 }  // namespace mote::detail

@@ -81,10 +81,11 @@ struct MapView {
 };
 
 /// Every group of the batch cast in bundles; rays of sensors in no group keep `fill`.
-std::vector<float> cast_in_bundles(const MapView& v, const RayBatch& batch, float fill) {
+std::vector<float> cast_in_bundles(const MapView& v, const RayBatch& batch, float fill,
+                                   detail::BundleGrouping grouping = {}) {
   std::vector<float> ranges(batch.ray_count(), fill);
   const detail::BatchRays rays(v.frame, v.mask, batch, ranges.size());
-  const detail::BundleGroups groups = detail::group_for_bundles(rays, v.mask, 64, 1);
+  const detail::BundleGroups groups = detail::group_for_bundles(rays, v.mask, 64, 1, grouping);
   detail::BundleScratch scratch;
   for (std::size_t g = 0; g < groups.count(); ++g) {
     detail::cast_bundle_group(rays, v.mask, v.bits, groups, g, ranges, scratch, {0, rays.beams()});
@@ -92,13 +93,14 @@ std::vector<float> cast_in_bundles(const MapView& v, const RayBatch& batch, floa
   return ranges;
 }
 
-void expect_grid_walk_ranges(const std::filesystem::path& yaml, double spread, double turn) {
+void expect_grid_walk_ranges(const std::filesystem::path& yaml, double spread, double turn,
+                             detail::BundleGrouping grouping = {}) {
   const OccupancyGrid grid = load_map(yaml);
   const MapView v(grid);
   const std::vector<float> beams = beam_angles();
   const Poses poses = clouds(grid, 12, 200, spread, turn, 7);
   const RayBatch batch = batch_of(poses, beams);
-  const std::vector<float> got = cast_in_bundles(v, batch, -1.0F);
+  const std::vector<float> got = cast_in_bundles(v, batch, -1.0F, grouping);
   const detail::BatchRays rays(v.frame, v.mask, batch, got.size());
   const double diagonal = grid.resolution() * std::numbers::sqrt2;
   int cast = 0;
@@ -142,6 +144,46 @@ TEST(RayBundles, GridWalkRangesForTrackingCloudsOnWillow) {
 TEST(RayBundles, GridWalkRangesForScatteredSensorsOnIntel) {
   MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
   expect_grid_walk_ranges(path, 3.0, 3.0);  // groups of one or two
+}
+
+TEST(RayBundles, GridWalkRangesInTwoDegreeBinsAndBlocksOf32OnIntel) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  expect_grid_walk_ranges(path, 0.4, 0.16, {180, 32});  // wide wedges, full bundles
+}
+
+TEST(RayBundles, ARangeDoesNotDependOnTheGroupingItWasCastIn) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  const OccupancyGrid grid = load_map(path);
+  const MapView v(grid);
+  const std::vector<float> beams = beam_angles();
+  const Poses poses = clouds(grid, 4, 300, 0.2, 0.08, 13);  // the batch's spans view these
+  const RayBatch batch = batch_of(poses, beams);
+  const std::vector<float> finest = cast_in_bundles(v, batch, -1.0F);
+  for (const detail::BundleGrouping g : {detail::BundleGrouping{720, 32}, {360, 32}, {180, 32}}) {
+    EXPECT_EQ(cast_in_bundles(v, batch, -1.0F, g), finest)
+        << g.heading_bins << " bins, blocks of " << g.block_cells;
+  }
+}
+
+TEST(RayBundles, GroupingsCoarsenAsTheCloudSpreadsAndStopWhereEmbreeIsFaster) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  const OccupancyGrid grid = load_map(path);
+  const MapView v(grid);
+  const std::vector<float> beams = beam_angles();
+  const auto choose = [&](double spread, double turn) {
+    const Poses poses = clouds(grid, 1, 10000, spread, turn, 17);
+    const RayBatch batch = batch_of(poses, beams);
+    return detail::grouping_for_every_ray(
+        detail::BatchRays(v.frame, v.mask, batch, batch.ray_count()), v.mask);
+  };
+  const auto settled = choose(0.05, 0.02);
+  ASSERT_TRUE(settled.has_value());
+  EXPECT_EQ(settled->heading_bins, 720);
+  EXPECT_EQ(settled->block_cells, 16);
+  const auto spread = choose(0.2, 0.08);
+  ASSERT_TRUE(spread.has_value());
+  EXPECT_LT(spread->heading_bins, 720);  // the finest groups would hold about 50
+  EXPECT_FALSE(choose(3.0, 3.0).has_value()) << "a global set's groups are a sensor or two";
 }
 
 TEST(RayBundles, ARangeDoesNotDependOnTheGroupItWasCastIn) {
