@@ -367,59 +367,30 @@ std::uint64_t group_key(const CellMask& m, const SensorFrame& s, std::size_t p, 
 
 }  // namespace
 
-std::vector<double> mean_group_sizes(const BatchRays& rays, const CellMask& m, std::size_t sample,
-                                     std::span<const BundleGrouping> groupings) {
+double part_group_size(const BatchRays& rays, const CellMask& m, std::size_t part) {
   const std::size_t n = rays.particles();
-  const std::size_t stride =
-      std::max<std::size_t>(1, (n + sample - 1) / std::max<std::size_t>(sample, 1));
-  std::vector<std::pair<SensorFrame, std::size_t>> drawn;
-  for (std::size_t p = 0; p < n; p += stride) drawn.emplace_back(rays.sensor(p), p);
-  std::vector<double> means;
-  std::vector<std::uint64_t> groups;
-  for (const BundleGrouping& g : groupings) {
-    groups.clear();
-    for (const auto& [sensor, p] : drawn) {
-      const std::uint64_t key = group_key(m, sensor, p, g);
-      if (key != kUngrouped) groups.push_back(key >> 32);
+  const std::array<std::size_t, 2> begins{0, n / 2 / part * part};
+  // Per part: sensors in a group, distinct groups (the parts in parallel: each sorts its keys).
+  std::array<std::pair<std::size_t, std::size_t>, 2> counts{};
+  par::for_each_chunk(begins[1] == 0 ? 1 : 2, 1, [&](std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < last; ++k) {
+      std::vector<std::uint64_t> groups;
+      for (std::size_t p = begins[k]; p < std::min(n, begins[k] + part); ++p) {
+        const std::uint64_t key = group_key(m, rays.sensor(p), p, BundleGrouping{});
+        if (key != kUngrouped) groups.push_back(key >> 32);
+      }
+      std::sort(groups.begin(), groups.end());
+      const auto distinct = std::unique(groups.begin(), groups.end()) - groups.begin();
+      counts[k] = {groups.size(), static_cast<std::size_t>(distinct)};
     }
-    if (groups.empty()) {
-      means.push_back(0.0);
-      continue;
-    }
-    const std::size_t grouped = groups.size();
-    std::sort(groups.begin(), groups.end());
-    const auto distinct =
-        static_cast<std::size_t>(std::unique(groups.begin(), groups.end()) - groups.begin());
-    // Each drawn sensor stands for `stride` of the set.
-    means.push_back(static_cast<double>(grouped * stride) / static_cast<double>(distinct));
-  }
-  return means;
+  });
+  const std::size_t grouped = counts[0].first + counts[1].first;
+  const std::size_t distinct = counts[0].second + counts[1].second;
+  return distinct == 0 ? 0.0 : static_cast<double>(grouped) / static_cast<double>(distinct);
 }
-
-namespace {
-constexpr std::size_t kSampledSensors = 4096;
-/// From finest to coarsest: 0.5, 0.5, 1 and 2 degrees, blocks of 16 then 32 cells.
-constexpr std::array<BundleGrouping, 4> kGroupings{{{720, 16}, {720, 32}, {360, 32}, {180, 32}}};
-/// Sensors a group holds on average from which a finer grouping is not worth giving up
-/// (bundles in 0.5-degree bins read 39 M rays/s at groups of 385, 25 at 51; in 2-degree bins 37
-/// at 309).
-constexpr double kFullBundle = 150.0;
-/// The coarsest grouping's groups beat Embree from about this size (24 against 16 M rays/s at
-/// 84, 14 against 16 at 42).
-constexpr double kCoarsestPays = 64.0;
-}  // namespace
 
 bool bundles_pay(const BatchRays& rays, const CellMask& m, double min_mean) {
-  return mean_group_size(rays, m, kSampledSensors) >= min_mean;
-}
-
-std::optional<BundleGrouping> grouping_for_every_ray(const BatchRays& rays, const CellMask& m) {
-  const std::vector<double> means = mean_group_sizes(rays, m, kSampledSensors, kGroupings);
-  for (std::size_t k = 0; k < kGroupings.size(); ++k) {
-    if (means[k] >= kFullBundle) return kGroupings[k];
-  }
-  if (means.back() >= kCoarsestPays) return kGroupings.back();
-  return std::nullopt;
+  return part_group_size(rays, m, kPreparedPart) >= min_mean;
 }
 
 BitMask::BitMask(const CellMask& m)

@@ -74,16 +74,6 @@ struct BundleGroups {
                                              std::size_t grain, std::size_t min_size,
                                              BundleGrouping grouping = {});
 
-/// The mean size of the groups of group_for_bundles under each grouping, estimated from every
-/// k-th sensor so that at most `sample` are looked at (k = 1 for a batch no larger).
-[[nodiscard]] std::vector<double> mean_group_sizes(const BatchRays& rays, const CellMask& mask,
-                                                   std::size_t sample,
-                                                   std::span<const BundleGrouping> groupings);
-[[nodiscard]] inline double mean_group_size(const BatchRays& rays, const CellMask& mask,
-                                            std::size_t sample, BundleGrouping grouping = {}) {
-  return mean_group_sizes(rays, mask, sample, {&grouping, 1}).front();
-}
-
 /// A group's working arrays, reused from group to group by one task.
 struct BundleScratch {
   std::vector<float> gx, gy;  ///< the group's sensors (cells)
@@ -126,25 +116,30 @@ void cast_bundles(const BatchRays& rays, const CellMask& mask, const BitMask& bi
                   std::optional<float> only = std::nullopt);
 
 /// The groups' mean size from which casting a certified table's uncertified third of the rays
-/// in bundles (finest grouping) beats Embree (measured: the beam model tracking on Intel at 10k
+/// in bundles (default grouping) beats Embree (measured: the beam model tracking on Intel at 10k
 /// particles, groups of about 170, gains; bench_raycast's tracking cloud, 0.2 rad of heading,
 /// groups of about 5, loses).
 inline constexpr double kBundlesPayForSomeRays = 64.0;
 
-/// Whether a whole batch's sensors gather into groups (finest grouping) of at least `min_mean`
-/// on average, the mean estimated from at most 4096 sensors: the choice a caster makes once per
-/// update, before casting the batch in parts.
+/// Casts prepared on a whole set are made in parts of this many consecutive particles, each
+/// grouping its own sensors: the engine weighs its particles in tasks of that many (its default
+/// grain).
+inline constexpr std::size_t kPreparedPart = 4096;
+
+/// The mean size of the groups that parts of `part` consecutive particles form, estimated on
+/// two of them (the first and the middle one). A set whose sensors gather only as a whole (a
+/// global set after the first updates: few headings, but every part holding particles from all
+/// over the map) has small groups in each part, where bundles lose to Embree four times over.
+[[nodiscard]] double part_group_size(const BatchRays& rays, const CellMask& mask, std::size_t part);
+
+/// Whether the parts of a whole batch (kPreparedPart particles each) gather into groups of at
+/// least `min_mean` on average: the choice a caster makes once per update, before casting the
+/// batch in parts.
 [[nodiscard]] bool bundles_pay(const BatchRays& rays, const CellMask& mask, double min_mean);
 
-/// The grouping in which casting every ray of the batch in bundles beats Embree the most, or
-/// none when Embree is faster: the finest grouping whose groups hold kFullBundle sensors on
-/// average, else the coarsest if its groups reach kCoarsestPays (the sizes where bundles beat
-/// Embree in each grouping rise as the groups coarsen). Estimated from at most 4096 sensors, once
-/// per update. Measured (scratch program, 10k-sensor clouds, Intel, 2 threads, M rays/s):
-/// 5 cm / 0.02 rad clouds 39 finest against Embree's 18; 0.2 m / 0.08 rad 25 finest, 37 in
-/// 2-degree bins, Embree 17; 0.4 m / 0.16 rad 12 finest, 24 in 2-degree bins and blocks of 32,
-/// Embree 16; 0.8 m / 0.32 rad 13 at best against 15.
-[[nodiscard]] std::optional<BundleGrouping> grouping_for_every_ray(const BatchRays& rays,
-                                                                   const CellMask& mask);
+/// The groups' mean size from which casting every ray in bundles beats Embree (measured, a
+/// scratch program on 10k-sensor clouds on Intel and on Willow, 2 threads: even at groups of
+/// 25-27, bundles 1.2-1.5 times Embree's speed at 36-54, twice at 140-400).
+inline constexpr double kBundlesPayForEveryRay = 32.0;
 
 }  // namespace mote::detail

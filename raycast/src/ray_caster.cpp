@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdint>
 #include <limits>
-#include <optional>
 #include <vector>
 
 #include "embree_device.hpp"
@@ -25,9 +23,8 @@ struct RayCaster::Impl {
   detail::CellMask mask;
   detail::WallScene walls;
   detail::BitMask bits;  ///< for casting gathered sensors' rays in bundles
-  /// prepare()'s choice for cast_prepared(): bundles, heading bins x 65536 + block cells of
-  /// their grouping, when the set's sensors gather; 0 for Embree.
-  mutable std::atomic<std::uint32_t> prepared_grouping{0};
+  /// prepare()'s choice for cast_prepared(): bundles when the set's sensors gather.
+  mutable std::atomic<bool> prepared_bundles{false};
 
   Impl(const OccupancyGrid& grid, RayCastOptions opts)
       : frame(grid.origin()),
@@ -91,26 +88,22 @@ void RayCaster::cast(const RayBatch& batch, std::span<float> ranges) const {
 
 void RayCaster::prepare(const RayBatch& batch) const {
   const detail::BatchRays rays(impl_->frame, impl_->mask, batch, batch.ray_count());
-  const std::optional<detail::BundleGrouping> g = detail::grouping_for_every_ray(rays, impl_->mask);
-  impl_->prepared_grouping.store(
-      g ? static_cast<std::uint32_t>(g->heading_bins * 65536 + g->block_cells) : 0,
+  impl_->prepared_bundles.store(
+      detail::bundles_pay(rays, impl_->mask, detail::kBundlesPayForEveryRay),
       std::memory_order_relaxed);
 }
 
 void RayCaster::cast_prepared(const RayBatch& batch, std::span<float> ranges) const {
   const Impl& impl = *impl_;
   const detail::BatchRays rays(impl.frame, impl.mask, batch, ranges.size());
-  const std::uint32_t packed = impl.prepared_grouping.load(std::memory_order_relaxed);
-  if (packed == 0) {
+  if (!impl.prepared_bundles.load(std::memory_order_relaxed)) {
     impl.cast_embree(rays, ranges, {});
     return;
   }
-  const detail::BundleGrouping grouping{static_cast<int>(packed / 65536),
-                                        static_cast<int>(packed % 65536)};
   // Every sensor on the map, finite and outside walls goes to a bundle, however small its
   // group; the rest (off the map, in a wall, not finite) as cast() treats them.
   const detail::BundleGroups groups =
-      detail::group_for_bundles(rays, impl.mask, impl.options.particle_grain, 1, grouping);
+      detail::group_for_bundles(rays, impl.mask, impl.options.particle_grain, 1);
   impl.cast_embree(rays, ranges, groups.grouped);
   detail::cast_bundles(rays, impl.mask, impl.bits, groups, ranges);
 }

@@ -1,8 +1,8 @@
 // Rays cast in bundles (raycast/src/ray_bundles.hpp) on the recorded maps: the exact grid
-// walk's ranges for tracking clouds and for scattered sensors, whatever group a sensor falls
-// in; and a certified range table that casts its uncertified rays in bundles for gathered
-// sensors, and the Embree caster that casts all of theirs so, read the grid walk's ranges
-// there, the same whole or in prepared parts, on 1 or 2 threads.
+// walk's ranges for tracking clouds and for scattered sensors, whatever group or grouping a
+// sensor falls in; and a certified range table that casts its uncertified rays in bundles for
+// gathered sensors, and the Embree caster that casts all of theirs so, read the grid walk's
+// ranges there, the same whole or in prepared parts, on 1 or 2 threads.
 
 #include <gtest/gtest.h>
 #include <oneapi/tbb/task_arena.h>
@@ -165,27 +165,6 @@ TEST(RayBundles, ARangeDoesNotDependOnTheGroupingItWasCastIn) {
   }
 }
 
-TEST(RayBundles, GroupingsCoarsenAsTheCloudSpreadsAndStopWhereEmbreeIsFaster) {
-  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
-  const OccupancyGrid grid = load_map(path);
-  const MapView v(grid);
-  const std::vector<float> beams = beam_angles();
-  const auto choose = [&](double spread, double turn) {
-    const Poses poses = clouds(grid, 1, 10000, spread, turn, 17);
-    const RayBatch batch = batch_of(poses, beams);
-    return detail::grouping_for_every_ray(
-        detail::BatchRays(v.frame, v.mask, batch, batch.ray_count()), v.mask);
-  };
-  const auto settled = choose(0.05, 0.02);
-  ASSERT_TRUE(settled.has_value());
-  EXPECT_EQ(settled->heading_bins, 720);
-  EXPECT_EQ(settled->block_cells, 16);
-  const auto spread = choose(0.2, 0.08);
-  ASSERT_TRUE(spread.has_value());
-  EXPECT_LT(spread->heading_bins, 720);  // the finest groups would hold about 50
-  EXPECT_FALSE(choose(3.0, 3.0).has_value()) << "a global set's groups are a sensor or two";
-}
-
 TEST(RayBundles, ARangeDoesNotDependOnTheGroupItWasCastIn) {
   MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
   const OccupancyGrid grid = load_map(path);
@@ -341,6 +320,40 @@ TEST(RayCasterPrepared, ScatteredSensorsStayOnEmbree) {
   std::vector<float> embree(batch.ray_count());
   caster.cast(batch, embree);
   EXPECT_EQ(prepared_in_two_parts(caster, poses, beams, 2), embree);
+}
+
+TEST(RayCasterPrepared, ASetThatGathersOnlyAsAWholeStaysOnEmbree) {
+  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
+  const OccupancyGrid grid = load_map(path);
+  const RayCaster caster(grid);
+  const MapView v(grid);
+  const std::vector<float> beams = beam_angles();
+  // Sensors all over the map with one heading, in no spatial order, as a global set's after its
+  // first updates: they gather as a whole, but every part of 4096 holds a few a group.
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<> u(0.0, 1.0);
+  const auto& free = grid.free_cells();
+  Poses poses;
+  for (int k = 0; k < 40000; ++k) {
+    const Point2 p = grid.free_point(
+        static_cast<std::size_t>(u(rng) * static_cast<double>(free.size())) % free.size(), u(rng),
+        u(rng));
+    poses.x.push_back(static_cast<float>(p.x));
+    poses.y.push_back(static_cast<float>(p.y));
+    poses.theta.push_back(static_cast<float>(0.3 + 0.004 * u(rng)));
+  }
+  const RayBatch batch = batch_of(poses, beams);
+  const detail::BatchRays rays(v.frame, v.mask, batch, batch.ray_count());
+  ASSERT_GE(detail::group_for_bundles(rays, v.mask, 64, 1).mean_size(),
+            detail::kBundlesPayForEveryRay);
+  EXPECT_LT(detail::part_group_size(rays, v.mask, detail::kPreparedPart),
+            detail::kBundlesPayForEveryRay);
+  std::vector<float> embree(batch.ray_count());
+  caster.cast(batch, embree);
+  std::vector<float> got(batch.ray_count());
+  caster.prepare(batch);
+  caster.cast_prepared(batch, got);
+  EXPECT_EQ(got, embree);
 }
 
 }  // namespace
