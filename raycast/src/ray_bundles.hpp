@@ -115,11 +115,12 @@ void cast_bundles(const BatchRays& rays, const CellMask& mask, const BitMask& bi
                   const BundleGroups& groups, std::span<float> ranges,
                   std::optional<float> only = std::nullopt);
 
-/// The groups' mean size from which casting a certified table's uncertified third of the rays
-/// in bundles (default grouping) beats Embree (measured: the beam model tracking on Intel at 10k
-/// particles, groups of about 170, gains; bench_raycast's tracking cloud, 0.2 rad of heading,
-/// groups of about 5, loses).
-inline constexpr double kBundlesPayForSomeRays = 64.0;
+/// The mean size of the groups a cast forms from which casting a certified table's uncertified
+/// third of the rays in bundles beats Embree: the beam model tracking on Intel at 10k particles
+/// casts parts whose groups hold about 75 and gains 1.2-1.3 times; bench_raycast's tracking
+/// cloud (0.2 rad of heading) forms groups of about 5 and loses. Between them, not measured
+/// closer: the break-even of casting every ray, kBundlesPayForEveryRay.
+inline constexpr double kBundlesPayForSomeRays = 32.0;
 
 /// Casts prepared on a whole set are made in parts of this many consecutive particles, each
 /// grouping its own sensors: the engine weighs its particles in tasks of that many (its default
