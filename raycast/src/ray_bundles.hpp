@@ -117,9 +117,9 @@ void cast_bundles(const BatchRays& rays, const CellMask& mask, const BitMask& bi
 
 /// The mean size of the groups a cast forms from which casting a certified table's uncertified
 /// third of the rays in bundles beats Embree: the beam model tracking on Intel at 10k particles
-/// casts parts whose groups hold about 75 and gains 1.2-1.3 times; bench_raycast's tracking
-/// cloud (0.2 rad of heading) forms groups of about 5 and loses. Between them, not measured
-/// closer: the break-even of casting every ray, kBundlesPayForEveryRay.
+/// gains 1.2-1.3 times (its whole set's groups hold about 170; the parts' it casts fewer, not
+/// measured); bench_raycast's tracking cloud (0.2 rad of heading) forms groups of about 5 and
+/// loses. Between them, not measured closer: the break-even of casting every ray.
 inline constexpr double kBundlesPayForSomeRays = 32.0;
 
 /// Casts prepared on a whole set are made in parts of this many consecutive particles, each
@@ -139,8 +139,9 @@ inline constexpr std::size_t kPreparedPart = 4096;
 [[nodiscard]] bool bundles_pay(const BatchRays& rays, const CellMask& mask, double min_mean);
 
 /// The groups' mean size from which casting every ray in bundles beats Embree (measured, a
-/// scratch program on 10k-sensor clouds on Intel and on Willow, 2 threads: even at groups of
-/// 25-27, bundles 1.2-1.5 times Embree's speed at 36-54, twice at 140-400).
+/// scratch program casting 10k-sensor clouds whole, 2 threads: on Intel even at groups of 27,
+/// 1.2-1.5 times Embree's speed at 36-51, twice at 143-385, 0.7 at 16; on Willow 1.2 at 27,
+/// 0.9 at 16).
 inline constexpr double kBundlesPayForEveryRay = 32.0;
 
 }  // namespace mote::detail

@@ -36,10 +36,10 @@ class RayCaster {
   /// weighed in parts): when the sensors of its parts of 4096 consecutive particles gather (a
   /// tracking cloud: groups of 32 and more by block of 16 x 16 cells and half-degree heading
   /// bin), every ray of a part is cast in bundles from a bit mask of the map instead of through
-  /// Embree, up to 2.5 times as fast. The ranges are the same walls' up to float rounding; at a
-  /// tie, a ray passing a wall's end at exactly its reach, the bundles decide as the grid walk
-  /// (GridRayCaster) does. The choice is made on the whole set so that a ray's range depends on
-  /// nothing but the ray, whatever the parts.
+  /// Embree, up to 2.2 times as fast (bench_e2e, Intel). The ranges are the same walls' up to float
+  /// rounding; at a tie, a ray passing a wall's end at exactly its reach, the bundles decide as the
+  /// grid walk (GridRayCaster) does. The choice is made on the whole set so that a ray's range
+  /// depends on nothing but the ray, whatever the parts.
   void prepare(const RayBatch& batch) const;
   /// cast() as prepare() chose for the whole set (Embree before any prepare()). Throws as cast().
   void cast_prepared(const RayBatch& batch, std::span<float> ranges) const;
