@@ -143,24 +143,25 @@ struct RangeTable::Impl {
                      float* out) const noexcept;
   [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
   /// Casts particles [begin, end) of a batch; rays of uncertified entries go to `exact` (a
-  /// Packet16), or nowhere when the table is not certified, but for particles p with
-  /// bundled[p] set (when given), whose rays stay at kCastExactly.
+  /// Packet16), or nowhere when the table is not certified, but for the particles `bundles`
+  /// groups (when given), whose rays stay at kCastExactly; their sensor frames, which grouping
+  /// computed for every particle, are read from it instead of computed again.
   template <class Wrap, class Exact>
   void cast_chunk(const detail::BatchRays& rays, const detail::CellMask& m,
                   std::span<const double> beam_index, const Wrap& wrap, std::size_t begin,
                   std::size_t end, std::span<float> out_ranges, Exact* exact,
-                  std::span<const std::uint8_t> bundled = {}) const;
+                  const detail::BundleGroups* bundles = nullptr) const;
   /// cast_chunk with the exact caster: rays of uncertified entries, queued in particle order
   /// within the chunk, so which rays share a packet depends on the grain only (design.md 3).
-  /// Those of particles in `bundled` (when given) are left reading kCastExactly, for bundles.
+  /// Those of particles in `bundles` (when given) are left reading kCastExactly, for bundles.
   template <class Wrap>
   void cast_chunk_certified(const detail::BatchRays& rays, const detail::CellMask& m,
                             std::span<const double> beam_index, const Wrap& wrap, std::size_t begin,
                             std::size_t end, std::span<float> out_ranges,
-                            std::span<const std::uint8_t> bundled) const {
+                            const detail::BundleGroups* bundles) const {
     const detail::FlushDenormals denormals_off;
     detail::Packet16 exact(walls->scene(), rays.max_range(), out_ranges);
-    cast_chunk(rays, m, beam_index, wrap, begin, end, out_ranges, &exact, bundled);
+    cast_chunk(rays, m, beam_index, wrap, begin, end, out_ranges, &exact, bundles);
     exact.flush();
     detail::check_embree_thread("casting rays");
   }

@@ -253,13 +253,14 @@ template <class Wrap, class Exact>
 void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::CellMask& m,
                                   std::span<const double> beam_index, const Wrap& wrap,
                                   std::size_t begin, std::size_t end, std::span<float> out_ranges,
-                                  Exact* exact, std::span<const std::uint8_t> bundled) const {
+                                  Exact* exact, const detail::BundleGroups* bundles) const {
   const std::size_t beams = rays.beams();
   const double per_rad = options.angles / (2.0 * std::numbers::pi);
   std::vector<Choice> choices(beams);
   BeamScratch scratch(beams);
+  const bool framed = bundles != nullptr && !bundles->sensors.empty();
   for (std::size_t p = begin; p < end; ++p) {
-    const detail::SensorFrame s = rays.sensor(p);
+    const detail::SensorFrame s = framed ? bundles->sensors[p] : rays.sensor(p);
     float* out = out_ranges.data() + p * beams;
     if (!s.finite) {
       std::fill(out, out + beams, std::numeric_limits<float>::quiet_NaN());
@@ -290,7 +291,7 @@ void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::C
         choose(c, heading, beam_index, scratch, choices);
         for (std::size_t b = 0; b < beams; ++b) out[b] = read(choices[b], rays.max_range());
       }
-      if (exact == nullptr || (!bundled.empty() && bundled[p] != 0)) continue;
+      if (exact == nullptr || (framed && bundles->grouped[p] != 0)) continue;
       for (std::size_t b = 0; b < beams; ++b) {
         if (out[b] == kCastExactly) exact->add(rays.ray(s, b), p * beams + b);
       }
@@ -323,7 +324,7 @@ void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tile
     par::for_each_chunk(
         rays.particles(), t.options.particle_grain, [&](std::size_t begin, std::size_t end) {
           if (t.walls) {
-            t.cast_chunk_certified(rays, m, beam_index, wrap, begin, end, ranges, groups.grouped);
+            t.cast_chunk_certified(rays, m, beam_index, wrap, begin, end, ranges, &groups);
           } else {
             t.cast_chunk<decltype(wrap), detail::Packet16>(rays, m, beam_index, wrap, begin, end,
                                                            ranges, nullptr);
