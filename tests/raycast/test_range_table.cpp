@@ -24,15 +24,17 @@ namespace {
 
 constexpr float kMaxRange = 30.0F;
 
-/// Share of rays from free cells within one cell of Embree, and the 99th percentile (cells), at
-/// the default 512 angles on a lattice of every cell. These are the values measured when the
-/// table was written (BENCHMARKS.md, "Range table"), kept as floors so a change that makes the
-/// table less accurate fails; issue 19 asked for 99% within one cell, which a 256 MB table of
-/// these maps does not reach (the misses are rays grazing walls, see BENCHMARKS.md); the
-/// certified table does (test_range_table_certified.cpp).
+/// Shares of rays from free cells within one and within two cells of Embree, and the 99th
+/// percentile (cells), at the default 512 angles on a lattice of every cell. These are the values
+/// measured when the table was written (BENCHMARKS.md, "Range table"), kept as floors so a change
+/// that makes the table less accurate fails (within two cells: rays that are grossly off, which
+/// the p99 alone does not count once most rays are right); issue 19 asked for 99% within one cell,
+/// which a 256 MB table of these maps does not reach (the misses are rays grazing walls, see
+/// BENCHMARKS.md); the certified table does (test_range_table_certified.cpp).
 struct Floor {
   const char* map;
   double within_one_cell;
+  double within_two_cells;
   double p99_cells;
 };
 
@@ -51,18 +53,21 @@ void expect_close_to_embree(const Floor& f) {
             << static_cast<double>(table.stats().bytes) / 1048576.0 << " MB, built in "
             << table.stats().build_seconds << " s\n";
   EXPECT_GE(acc.within_one_cell, f.within_one_cell);
+  EXPECT_GE(acc.within_two_cells, f.within_two_cells);
   EXPECT_LE(acc.p99_cells, f.p99_cells);
   EXPECT_LE(acc.median_cells, 0.5);
 }
 
-TEST(RangeTable, IntelCloseToEmbree) { expect_close_to_embree({"intel/intel.yaml", 0.91, 30.0}); }
+TEST(RangeTable, IntelCloseToEmbree) {
+  expect_close_to_embree({"intel/intel.yaml", 0.91, 0.95, 30.0});
+}
 
 TEST(RangeTable, WillowCloseToEmbree) {
-  expect_close_to_embree({"maps/willow-full-0.05.yaml", 0.91, 45.0});
+  expect_close_to_embree({"maps/willow-full-0.05.yaml", 0.91, 0.945, 45.0});
 }
 
 TEST(RangeTable, StataBasementCloseToEmbree) {
-  expect_close_to_embree({"maps/basement_fixed.map.yaml", 0.87, 16.0});
+  expect_close_to_embree({"maps/basement_fixed.map.yaml", 0.87, 0.93, 16.0});
 }
 
 /// Rays from occupied and unknown cells and from off the map give what the exact casters give:
