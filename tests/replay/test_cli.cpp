@@ -231,6 +231,14 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
   ASSERT_EQ(tiled.status, 0) << tiled.err;
   EXPECT_NE(tiled.out.find("64 x 64 cells, built on first use"), std::string::npos) << tiled.out;
   EXPECT_NE(tiled.out.find("% within 1 cell"), std::string::npos) << tiled.out;
+  // The same budget without tiles: the whole table on a coarser lattice.
+  const Outcome coarse = mote("info --map '" + floorplan().string() +
+                              "' --range-table-angles 64 --range-table-budget-mb 3 "
+                              "--range-table-no-tiles");
+  ASSERT_EQ(coarse.status, 0) << coarse.err;
+  EXPECT_EQ(coarse.out.find("built on first use"), std::string::npos) << coarse.out;
+  EXPECT_EQ(coarse.out.find("lattice 1 "), std::string::npos) << coarse.out;
+  EXPECT_NE(coarse.out.find("% within 1 cell"), std::string::npos) << coarse.out;
   const Outcome certified =
       mote("info --map '" + floorplan().string() + "' --range-table-angles 64 --certified");
   ASSERT_EQ(certified.status, 0) << certified.err;
