@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "isa_target.hpp"
 #include "mote/core/error.hpp"
+#include "mote/core/isa_target.hpp"
 #include "mote/engine/beam_model.hpp"
 
 namespace mote {

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "isa_target.hpp"
+#include "mote/core/isa_target.hpp"
 #include "mote/engine/fast_math.hpp"
 #include "resample_impl.hpp"
 

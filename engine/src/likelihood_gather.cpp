@@ -6,7 +6,7 @@
 // vectorized by the compiler for that variant's instruction set.
 #include "likelihood_gather.hpp"
 
-#include "isa_target.hpp"
+#include "mote/core/isa_target.hpp"
 #include "mote/engine/fast_math.hpp"
 
 #if MOTE_ISA_DISPATCH

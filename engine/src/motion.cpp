@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "isa_target.hpp"
+#include "mote/core/isa_target.hpp"
 #include "mote/engine/fast_math.hpp"
 #include "mote/engine/motion.hpp"
 

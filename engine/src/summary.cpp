@@ -16,8 +16,8 @@
 #include <limits>
 
 #include "cluster_labels.hpp"
-#include "isa_target.hpp"
 #include "moments.hpp"
+#include "mote/core/isa_target.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/engine/estimate.hpp"
 #include "mote/engine/fast_math.hpp"

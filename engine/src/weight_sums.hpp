@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <limits>
 
-#include "isa_target.hpp"
+#include "mote/core/isa_target.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/engine/fast_math.hpp"
 

@@ -1,5 +1,6 @@
 #pragma once
-// Per-instruction-set kernel variants (engine-internal; isa.hpp says what is promised).
+// Per-instruction-set kernel variants (internal to mote's libraries; mote/core/isa.hpp says what
+// is promised).
 //
 // A dispatched kernel is written once as an always-inline body and compiled three times through
 // wrappers carrying a GCC/clang target attribute and `flatten`: the body, and every inline
@@ -9,7 +10,7 @@
 // header (ours or the standard library's) is ever emitted out of line with AVX2 code that the
 // linker could then pick for a generic caller.
 
-#include "mote/engine/isa.hpp"
+#include "mote/core/isa.hpp"
 
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
 #define MOTE_ISA_DISPATCH 1
