@@ -167,6 +167,10 @@ bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
     return false;
   }
   ranges = tiles->ranges();
+  claims_on_lanes =
+      cell_bits && detail::claims_fit_lanes(tiles->max_resident() * kTileCells *
+                                                static_cast<std::size_t>(options.angles),
+                                            options.angles, width, height);
   stats.tile_cells = detail::TileSet::kCells;
   stats.max_resident_tiles = tiles->max_resident();
   stats.points = detail::count_lattice_points(m, 1);
@@ -182,6 +186,7 @@ void RangeTable::Impl::build() {
   stats.units_per_cell = units_for(width, height);
   if (casts_exactly()) walls = std::make_unique<detail::WallScene>(m);
   if (options.certify) bits = std::make_unique<detail::BitMask>(m);
+  if (confirms()) cell_bits = std::make_unique<detail::CellBits>(m);
   const std::size_t scene_bytes = exact_bytes();
   // Tiles when the whole table on every cell is over budget.
   const bool whole_fits = detail::table_bytes(detail::count_lattice_points(m, 1), blocking.size(),
@@ -207,6 +212,7 @@ void RangeTable::Impl::build() {
   whole = detail::allocate_huge<std::uint16_t>(entries);
   ranges = whole.get();
   fill_rows(m, point_x, point_y, layout.lattice, ranges);
+  claims_on_lanes = cell_bits && detail::claims_fit_lanes(entries, options.angles, width, height);
   const std::size_t uncertified = options.certify
                                       ? detail::certify({layout, point_x, point_y, cos_a, sin_a,
                                                          stats.units_per_cell, kCertifyTolerance},

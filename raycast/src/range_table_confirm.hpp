@@ -18,6 +18,7 @@
 #include <span>
 
 #include "range_table_angles.hpp"
+#include "range_table_claims.hpp"
 #include "range_table_impl.hpp"
 #include "range_table_sweep.hpp"
 
@@ -115,47 +116,72 @@ struct QueryRay {
   return pick;
 }
 
+/// Candidate k's claim at table angle a on query ray q: its confirmed crossing (cells), else
+/// kNotConfirmed; `every_claim_leaves` is cleared when the claim's ray met a wall.
+[[nodiscard]] inline float check_claim(const ClaimTable& t, const Candidates& c, std::size_t k,
+                                       std::size_t a, const QueryRay& q,
+                                       bool& every_claim_leaves) noexcept {
+  const std::uint16_t v = t.ranges[std::size_t{c.slot[k]} * t.angles + a] & kNoHit;
+  if (v == kNoHit) return kNotConfirmed;
+  every_claim_leaves = false;
+  const float r = static_cast<float>(v) * t.inv_units;
+  const float hx = (q.ox + c.wx[k]) + r * t.cos_a[a];
+  const float hy = (q.oy + c.wy[k]) + r * t.sin_a[a];
+  return confirm_claim(t.mask, q, hx, hy);
+}
+
+/// The query ray of a beam from (ox, oy) cells along unit (ux, uy).
+[[nodiscard]] inline QueryRay query_ray(float ox, float oy, float ux, float uy) noexcept {
+  return {ox, oy, ux, uy, 1.0F / ux, 1.0F / uy};
+}
+
 }  // namespace detail
 
 template <class Direction>
 void RangeTable::Impl::confirm_beams(const detail::Candidates& c, double gx, double gy,
                                      double heading, std::span<const double> beam_index,
                                      const Direction& dir, float max_range,
-                                     float* out) const noexcept {
-  const detail::CellMask m = mask();
+                                     detail::BeamScratch& scratch, float* out) const noexcept {
   const auto ox = static_cast<float>(gx / resolution);
   const auto oy = static_cast<float>(gy / resolution);
-  const auto inv_units = static_cast<float>(1.0 / stats.units_per_cell);
   const int n = options.angles;
-  const auto row = static_cast<std::size_t>(n);
-  for (std::size_t b = 0; b < beam_index.size(); ++b) {
+  const std::size_t beams = beam_index.size();
+  for (std::size_t b = 0; b < beams; ++b) {
     float frac = 0.0F;
     const std::size_t below = detail::angle_below(heading + beam_index[b], n, frac);
-    const std::array<std::size_t, 2> around{below, below + 1 == row ? 0 : below + 1};
+    scratch.angle[b] = static_cast<std::uint32_t>(below);
+    scratch.next[b] = below + 1 == static_cast<std::size_t>(n) ? 0 : scratch.angle[b] + 1;
     const auto [ux, uy] = dir(b);
-    const detail::QueryRay q{ox, oy, ux, uy, 1.0F / ux, 1.0F / uy};
-    float nearest = detail::kNotConfirmed;
-    bool every_claim_leaves = true;
-    // One claim: candidate k's entry at table angle a.
-    const auto check = [&](std::size_t k, std::size_t a) {
-      const std::uint16_t v = ranges[std::size_t{c.slot[k]} * row + a] & detail::kNoHit;
-      if (v == detail::kNoHit) return;
-      every_claim_leaves = false;
-      const float r = static_cast<float>(v) * inv_units;
-      nearest = std::min(nearest, detail::confirm_claim(m, q, ox + c.wx[k] + r * cos_a[a],
-                                                        oy + c.wy[k] + r * sin_a[a]));
-    };
-    // First the nearest neighbour on each side of the ray at both directions around it; when
-    // none confirms (1.6 % of Intel tracking's beams), every neighbour at both directions.
-    for (const std::size_t a : around) {
-      for (const std::size_t k : detail::nearest_each_side(c, cos_a[a], sin_a[a])) {
-        if (k != detail::Candidates::kCount) check(k, a);
-      }
-    }
+    scratch.dx[b] = ux;
+    scratch.dy[b] = uy;
+  }
+  const detail::ClaimTable t{ranges,
+                             static_cast<std::uint32_t>(n),
+                             cos_a.data(),
+                             sin_a.data(),
+                             static_cast<float>(1.0 / stats.units_per_cell),
+                             mask(),
+                             cell_bits.get()};
+  // First the nearest neighbour on each side of the ray at both directions around it (on
+  // vector lanes where the CPU has them)...
+  detail::four_claims(t, c, ox, oy,
+                      {{scratch.angle.data(), beams},
+                       {scratch.next.data(), beams},
+                       {scratch.dx.data(), beams},
+                       {scratch.dy.data(), beams},
+                       {scratch.nearest.data(), beams},
+                       {scratch.leaves.data(), beams}},
+                      claims_on_lanes);
+  for (std::size_t b = 0; b < beams; ++b) {
+    float nearest = scratch.nearest[b];
+    bool every_claim_leaves = scratch.leaves[b] != 0;
+    // ... and when none confirms (1.6 % of Intel tracking's beams), every neighbour at both.
     if (nearest == detail::kNotConfirmed && !every_claim_leaves) {
-      for (const std::size_t a : around) {
+      const detail::QueryRay q = detail::query_ray(ox, oy, scratch.dx[b], scratch.dy[b]);
+      for (const std::uint32_t a : {scratch.angle[b], scratch.next[b]}) {
         for (std::size_t k = 0; k < detail::Candidates::kCount; ++k) {
-          if (c.missing[k] == 0) check(k, a);
+          if (c.missing[k] != 0) continue;
+          nearest = std::min(nearest, detail::check_claim(t, c, k, a, q, every_claim_leaves));
         }
       }
     }

@@ -15,6 +15,7 @@
 #include "embree_packets.hpp"
 #include "huge_pages.hpp"
 #include "mote/raycast/range_table.hpp"
+#include "range_table_claims.hpp"
 #include "range_table_layout.hpp"
 #include "range_table_tiles.hpp"
 #include "ray_bundles.hpp"
@@ -59,12 +60,24 @@ struct Choice {
 /// Per-beam working arrays of RangeTable::Impl::choose, reused across the sensors of one task.
 struct BeamScratch {
   explicit BeamScratch(std::size_t beams)
-      : angle(beams), frac(beams), dx(beams), dy(beams), key(beams) {}
+      : angle(beams),
+        frac(beams),
+        dx(beams),
+        dy(beams),
+        key(beams),
+        next(beams),
+        nearest(beams),
+        leaves(beams) {}
   std::vector<std::uint32_t> angle;  ///< table angle below the ray's
   std::vector<float> frac;           ///< the ray's angle past it, in steps (0-1)
   std::vector<float> dx;             ///< its direction
   std::vector<float> dy;
   std::vector<std::int32_t> key;  ///< the running minimum of the candidates' keys
+  // The confirmed table's (ClaimBeams): the next table angle, the nearest confirmed claim and
+  // whether every claim left the map.
+  std::vector<std::uint32_t> next;
+  std::vector<float> nearest;
+  std::vector<std::uint32_t> leaves;
 };
 
 }  // namespace detail
@@ -80,6 +93,10 @@ struct RangeTable::Impl {
   std::unique_ptr<detail::WallScene> walls;
   /// The map as bits, for casting the rays of uncertified entries in bundles (certify only).
   std::unique_ptr<detail::BitMask> bits;
+  /// The map a bit a cell, for the confirmed table's claims on vector lanes (confirm only).
+  std::unique_ptr<detail::CellBits> cell_bits;
+  /// Whether those lanes can index this table and map (detail::claims_fit_lanes).
+  bool claims_on_lanes = false;
   /// What the last prepare decided for cast_prepared: bundles (true) or Embree.
   mutable std::atomic<bool> prepared_bundles{false};
   detail::TableLayout layout;  ///< the lattice of a whole table (empty when tiled)
@@ -140,7 +157,7 @@ struct RangeTable::Impl {
   template <class Direction>
   void confirm_beams(const detail::Candidates& c, double gx, double gy, double heading,
                      std::span<const double> beam_index, const Direction& dir, float max_range,
-                     float* out) const noexcept;
+                     detail::BeamScratch& scratch, float* out) const noexcept;
   [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
   /// Casts particles [begin, end) of a batch; rays of uncertified entries go to `exact` (a
   /// Packet16), or nowhere when the table is not certified, but for the particles `bundles`
@@ -165,9 +182,10 @@ struct RangeTable::Impl {
     exact.flush();
     detail::check_embree_thread("casting rays");
   }
-  /// Bytes of what casts exactly beside the table: the Embree scene and the bit mask.
+  /// Bytes of what casts exactly beside the table: the Embree scene and the bit masks.
   [[nodiscard]] std::size_t exact_bytes() const noexcept {
-    return (walls ? walls->bytes() : 0) + (bits ? bits->bytes() : 0);
+    return (walls ? walls->bytes() : 0) + (bits ? bits->bytes() : 0) +
+           (cell_bits ? cell_bits->bytes() : 0);
   }
 };
 

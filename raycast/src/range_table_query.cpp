@@ -234,7 +234,7 @@ float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
       const auto direction = [&](std::size_t) {
         return std::pair{static_cast<float>(ray.dx), static_cast<float>(ray.dy)};
       };
-      confirm_beams(c, ray.ox, ray.oy, a_real, {&beam, 1}, direction, max_range, &range);
+      confirm_beams(c, ray.ox, ray.oy, a_real, {&beam, 1}, direction, max_range, scratch, &range);
     } else {
       choose(c, a_real, {&beam, 1}, scratch, {&choice, 1});
       range = read(choice, max_range);
@@ -286,7 +286,8 @@ void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::C
           const detail::GridRay r = rays.ray(s, b);
           return std::pair{static_cast<float>(r.dx), static_cast<float>(r.dy)};
         };
-        confirm_beams(c, s.ox, s.oy, heading, beam_index, direction, rays.max_range(), out);
+        confirm_beams(c, s.ox, s.oy, heading, beam_index, direction, rays.max_range(), scratch,
+                      out);
       } else {
         choose(c, heading, beam_index, scratch, choices);
         for (std::size_t b = 0; b < beams; ++b) out[b] = read(choices[b], rays.max_range());
