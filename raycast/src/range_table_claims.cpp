@@ -16,11 +16,18 @@
 
 namespace mote::detail {
 
-CellBits::CellBits(const CellMask& m)
-    : words_((static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.height) + 31) / 32) {
-  const std::size_t cells = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.height);
-  for (std::size_t at = 0; at < cells; ++at) {
-    if (m.cells[at] != 0) words_[at / 32] |= std::uint32_t{1} << (at % 32);
+CellBits::CellBits(const CellMask& m) {
+  const auto w = static_cast<std::size_t>(m.width);
+  const auto h = static_cast<std::size_t>(m.height);
+  const std::size_t words = (w * h + 31) / 32 + 1;  // the spare word: see the class
+  rows_.assign(words, 0);
+  columns_.assign(words, 0);
+  for (std::size_t j = 0; j < h; ++j) {
+    for (std::size_t i = 0; i < w; ++i) {
+      if (m.cells[j * w + i] == 0) continue;
+      rows_[(j * w + i) / 32] |= std::uint32_t{1} << ((j * w + i) % 32);
+      columns_[(i * h + j) / 32] |= std::uint32_t{1} << ((i * h + j) % 32);
+    }
   }
 }
 
@@ -58,16 +65,31 @@ struct LaneRays {
   __m512 ox, oy, ux, uy, inv_ux, inv_uy;
 };
 
-/// Lanes whose cell (i, j) blocks; off-map cells are free (blocks_at).
-MOTE_LANES inline __mmask16 lanes_block(const ClaimTable& t, __mmask16 live, __m512i i,
-                                        __m512i j) noexcept {
-  const __mmask16 on_map = _mm512_mask_cmplt_epu32_mask(live, i, _mm512_set1_epi32(t.mask.width)) &
-                           _mm512_cmplt_epu32_mask(j, _mm512_set1_epi32(t.mask.height));
-  const __m512i at = _mm512_add_epi32(_mm512_mullo_epi32(j, _mm512_set1_epi32(t.mask.width)), i);
-  const __m512i word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), on_map,
-                                                   _mm512_srli_epi32(at, 5), t.bits->words(), 4);
-  const __m512i bit = _mm512_srlv_epi32(word, _mm512_and_si512(at, _mm512_set1_epi32(31)));
-  return _mm512_mask_test_epi32_mask(on_map, bit, _mm512_set1_epi32(1));
+/// Which of the two cells on either side of a face block, per lane: cells (k - 1, across) and
+/// (k, across) along a row (`along_rows`), else (across, k - 1) and (across, k) along a
+/// column; off-map cells are free (blocks_at). `low` gets the first cell's, the result is the
+/// second's. One gather: both bits lie in the 32 bits from the byte holding the first on-map one.
+MOTE_LANES inline __mmask16 lanes_pair_blocks(const ClaimTable& t, __mmask16 live, bool along_rows,
+                                              __m512i k, __m512i across, __mmask16& low) noexcept {
+  const int length = along_rows ? t.mask.width : t.mask.height;  // cells along k
+  const int lines = along_rows ? t.mask.height : t.mask.width;   // rows (columns) across
+  const __m512i one = _mm512_set1_epi32(1);
+  const __m512i k_low = _mm512_sub_epi32(k, one);
+  const __mmask16 line_on = _mm512_mask_cmplt_epu32_mask(live, across, _mm512_set1_epi32(lines));
+  const __mmask16 low_on = _mm512_mask_cmplt_epu32_mask(line_on, k_low, _mm512_set1_epi32(length));
+  const __mmask16 high_on = _mm512_mask_cmplt_epu32_mask(line_on, k, _mm512_set1_epi32(length));
+  const __m512i at_low =
+      _mm512_add_epi32(_mm512_mullo_epi32(across, _mm512_set1_epi32(length)), k_low);
+  // The byte of the first on-map cell of the pair: the low one, else the high one.
+  const __m512i first_on = _mm512_mask_mov_epi32(_mm512_add_epi32(at_low, one), low_on, at_low);
+  const __m512i byte = _mm512_srli_epi32(first_on, 3);
+  const __m512i word = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), low_on | high_on, byte,
+                                                   t.bits->bits(along_rows), 1);
+  // Low's bit (-1, read as no bit, when low is off the map and high starts a byte).
+  const __m512i offset = _mm512_sub_epi32(at_low, _mm512_slli_epi32(byte, 3));
+  low = _mm512_mask_test_epi32_mask(low_on, _mm512_srlv_epi32(word, offset), one);
+  return _mm512_mask_test_epi32_mask(high_on,
+                                     _mm512_srlv_epi32(word, _mm512_add_epi32(offset, one)), one);
 }
 
 /// face_crossing on lanes: where each lane's ray crosses grid line `line` (of x when
@@ -86,14 +108,12 @@ MOTE_LANES inline __m512 lanes_face(const ClaimTable& t, __mmask16 live, const L
   const __m512i truncated = _mm512_cvttps_epi32(across_f);
   const __mmask16 below = _mm512_cmp_ps_mask(across_f, _mm512_cvtepi32_ps(truncated), _CMP_LT_OQ);
   const __m512i across = _mm512_mask_sub_epi32(truncated, below, truncated, _mm512_set1_epi32(1));
-  const __m512i l = _mm512_cvttps_epi32(line);
-  const __m512i l_minus = _mm512_sub_epi32(l, _mm512_set1_epi32(1));
+  // The cells before and beyond the line: k - 1 and k travelling forward, k and k - 1 back.
+  __mmask16 low = 0;
+  const __mmask16 high =
+      lanes_pair_blocks(t, live & ahead, vertical, _mm512_cvttps_epi32(line), across, low);
   const __mmask16 forward = _mm512_cmp_ps_mask(toward, _mm512_setzero_ps(), _CMP_GT_OQ);
-  const __m512i beyond = _mm512_mask_mov_epi32(l_minus, forward, l);
-  const __m512i before = _mm512_mask_mov_epi32(l, forward, l_minus);
-  const __mmask16 enters =
-      vertical ? lanes_block(t, live, beyond, across) & ~lanes_block(t, live, before, across)
-               : lanes_block(t, live, across, beyond) & ~lanes_block(t, live, across, before);
+  const __mmask16 enters = (forward & high & ~low) | (~forward & low & ~high);
   return _mm512_mask_mov_ps(_mm512_set1_ps(kNotConfirmed), ahead & enters, t_line);
 }
 
