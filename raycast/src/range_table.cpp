@@ -167,10 +167,11 @@ bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
     return false;
   }
   ranges = tiles->ranges();
+  // Slots number every tile of the map, resident or not (TileSet::slot).
   claims_on_lanes =
-      cell_bits && detail::claims_fit_lanes(tiles->max_resident() * kTileCells *
-                                                static_cast<std::size_t>(options.angles),
-                                            options.angles, width, height);
+      cell_bits &&
+      detail::claims_fit_lanes(tile_count * kTileCells * static_cast<std::size_t>(options.angles),
+                               options.angles, width, height);
   stats.tile_cells = detail::TileSet::kCells;
   stats.max_resident_tiles = tiles->max_resident();
   stats.points = detail::count_lattice_points(m, 1);

@@ -6,8 +6,8 @@
 /// per instruction set: the AVX-512 variant runs 16 beams on vector lanes, with the table's
 /// entries and the map's cells read by gathers (the scalar rule executes about 1 260
 /// instructions a ray, BENCHMARKS.md "Claims that name a wall face"); every other variant runs
-/// the scalar rule. Both give the same ranges, bit for bit (this file's translation unit is
-/// compiled without floating-point contraction).
+/// the scalar rule. Both give the same ranges, bit for bit (range_table_claims.cpp, where both
+/// are, is compiled without floating-point contraction).
 
 #include <cstddef>
 #include <cstdint>

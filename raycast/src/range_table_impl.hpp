@@ -57,7 +57,8 @@ struct Choice {
   std::ptrdiff_t next = 1;  ///< entry + next: the next table angle (wraps at the row's end)
 };
 
-/// Per-beam working arrays of RangeTable::Impl::choose, reused across the sensors of one task.
+/// Per-beam working arrays of RangeTable::Impl::choose and ::confirm_beams, reused across the
+/// sensors of one task.
 struct BeamScratch {
   explicit BeamScratch(std::size_t beams)
       : angle(beams),
@@ -93,7 +94,8 @@ struct RangeTable::Impl {
   std::unique_ptr<detail::WallScene> walls;
   /// The map as bits, for casting the rays of uncertified entries in bundles (certify only).
   std::unique_ptr<detail::BitMask> bits;
-  /// The map a bit a cell, for the confirmed table's claims on vector lanes (confirm only).
+  /// The map as bits along rows and along columns, for the confirmed table's claims on vector
+  /// lanes (confirm only).
   std::unique_ptr<detail::CellBits> cell_bits;
   /// Whether those lanes can index this table and map (detail::claims_fit_lanes).
   bool claims_on_lanes = false;
