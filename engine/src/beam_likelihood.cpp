@@ -190,6 +190,23 @@ MOTE_ISA_VARIANTS(weigh_block, weigh_block,
                    const BeamModelParams& params, float* logw, std::size_t count),
                   (plans, range_max, expected, params, logw, count))
 
+// amcl's combination, log(1 + sum_b pz_b^3) per particle (nav2_amcl's defaults): scalar, as
+// amcl computes it; the mote defaults take the vectorized product above.
+void add_amcl_cubed_sums(std::span<const float> ranges, float range_max,
+                         std::span<const float> expected, const BeamModelParams& params,
+                         std::span<float> logw) {
+  const std::size_t beams = ranges.size();
+  for (std::size_t i = 0; i < logw.size(); ++i) {
+    double sum = 0.0;
+    for (std::size_t b = 0; b < beams; ++b) {
+      const double z = std::min(ranges[b], range_max);
+      const double pz = amcl_beam_pz(z, expected[i * beams + b], range_max, params.mixture);
+      sum += pz * pz * pz;
+    }
+    logw[i] += static_cast<float>(params.tempering * std::log1p(sum));
+  }
+}
+
 }  // namespace
 
 void add_beam_log_likelihoods(std::span<const float> ranges, float range_max,
@@ -199,6 +216,10 @@ void add_beam_log_likelihoods(std::span<const float> ranges, float range_max,
     throw ConfigError("add_beam_log_likelihoods: expected ranges hold " +
                       std::to_string(expected.size()) + " values, not particles x beams = " +
                       std::to_string(logw.size()) + " x " + std::to_string(ranges.size()));
+  }
+  if (params.combination == LikelihoodCombination::kAmclCubedSum) {
+    add_amcl_cubed_sums(ranges, range_max, expected, params, logw);
+    return;
   }
   std::vector<BeamPlan> plans;
   plans.reserve(ranges.size());

@@ -5,62 +5,11 @@
 #include <limits>
 #include <numbers>
 
+#include "field_walker.hpp"
 #include "mote/core/parallel.hpp"
 
 namespace mote {
 namespace {
-
-// The distance field in cell units, walked in the grid frame (no per-step frame change).
-class FieldWalker {
- public:
-  explicit FieldWalker(const ScanFit& fit)
-      : grid_(fit.grid()),
-        distances_(fit.field().distances().data()),
-        inv_cell_(1.0 / grid_.resolution()),
-        width_(grid_.width()),
-        height_(grid_.height()) {}
-
-  // A map-frame point and direction in grid-frame cell units.
-  [[nodiscard]] Point2 cell_point(Point2 world) const {
-    const Point2 g = grid_.to_grid_frame(world);
-    return {g.x * inv_cell_, g.y * inv_cell_};
-  }
-  [[nodiscard]] Point2 cell_direction(double ux, double uy) const {
-    const Point2 o = grid_.to_grid_frame({0.0, 0.0});
-    const Point2 e = grid_.to_grid_frame({ux, uy});
-    return {e.x - o.x, e.y - o.y};
-  }
-  // Distance (cells) from the cell holding p to the nearest occupied cell centre, or -1 off
-  // the map.
-  [[nodiscard]] double cells_to_wall(Point2 p) const {
-    const double fi = std::floor(p.x);
-    const double fj = std::floor(p.y);
-    if (!(fi >= 0.0 && fj >= 0.0 && fi < width_ && fj < height_)) return -1.0;
-    const auto index = static_cast<std::size_t>(fj) * static_cast<std::size_t>(width_) +
-                       static_cast<std::size_t>(fi);
-    return distances_[index] * inv_cell_;
-  }
-  // True when the map holds no obstacle on the ray p + t u for t in [from, to] (cells).
-  // Sphere tracing: from any point the nearest occupied cell centre is d away, so the ray is
-  // free for d less 1.5 cells (the point anywhere in its cell, the occupied cell's extent);
-  // steps are at least half a cell. Off the map the ray is past every mapped wall: not free.
-  [[nodiscard]] bool free(Point2 p, Point2 u, double from, double to) const {
-    for (double t = from; t < to;) {
-      const double d = cells_to_wall({p.x + t * u.x, p.y + t * u.y});
-      if (d < 0.5) return false;  // an occupied cell, or off the map
-      t += std::max(d - 1.5, 0.5);
-    }
-    return true;
-  }
-  [[nodiscard]] double inv_cell() const { return inv_cell_; }
-
- private:
-  const OccupancyGrid& grid_;
-  const float* distances_;
-  double inv_cell_;
-  double width_;
-  double height_;
-};
 
 // The miss |z - z*| beyond which a reading is more probably random than a hit: where
 // z_hit N(d; 0, sigma_hit^2) falls to z_rand / z_max (Thrun eq. 6.4 against eq. 6.11). 0 when
@@ -87,30 +36,30 @@ double mean_endpoint_range(const BeamSet& beams) {
 }  // namespace
 
 bool BlockedBeamFilter::blocked_at(const BeamSet& beams, std::size_t b, const SensorSample& s,
-                                   const ScanFit& fit, double band) {
+                                   const MapField& map, double band) {
   const double r = beams.range[b];
   if (!(r < beams.range_max)) return false;  // a no-return has no endpoint
-  const FieldWalker walk(fit);
+  const FieldWalker walk(map.grid, map.field);
   const double k = walk.inv_cell();
   const double a = s.theta + beams.angle[b];
   const Point2 u = walk.cell_direction(std::cos(a), std::sin(a));
   // An endpoint within sigma_hit of a wall is a hit wherever the ray went (the likelihood
   // field scores it near its peak); only the others are traced, first past the endpoint
   // (where a wall within the band ends most of them), then up to it.
-  const double near_wall = std::max(fit.mixture().sigma_hit * k, 1.5);
+  const double near_wall = std::max(map.mixture.sigma_hit * k, 1.5);
   const double at_end = walk.cells_to_wall({s.origin.x + r * k * u.x, s.origin.y + r * k * u.y});
   if (at_end < near_wall) return false;  // on a wall, or off the map
   const double beyond = std::min(r + band, static_cast<double>(beams.range_max));
   return walk.free(s.origin, u, r * k, beyond * k) && walk.free(s.origin, u, 0.0, r * k);
 }
 
-bool BlockedBeamFilter::majority_blocked(const BeamSet& beams, std::size_t b, const ScanFit& fit,
+bool BlockedBeamFilter::majority_blocked(const BeamSet& beams, std::size_t b, const MapField& map,
                                          double band) const {
   const double needed = kAgreement * total_;
   double blocked = 0.0;
   double clear = 0.0;
   for (const SensorSample& s : samples_) {
-    (blocked_at(beams, b, s, fit, band) ? blocked : clear) += s.weight;
+    (blocked_at(beams, b, s, map, band) ? blocked : clear) += s.weight;
     if (blocked > needed) return true;
     if (clear >= total_ - needed) return false;
   }
@@ -134,19 +83,19 @@ bool BlockedBeamFilter::focused(const std::vector<PoseEstimate>& clusters, doubl
   return settled >= kFocusedWeight;
 }
 
-bool BlockedBeamFilter::focused_on(const BeamSet& beams, const ScanFit& fit,
+bool BlockedBeamFilter::focused_on(const BeamSet& beams, const MapField& map,
                                    const std::vector<PoseEstimate>& clusters) {
-  return focused(clusters, hit_band(fit.mixture(), beams.range_max), mean_endpoint_range(beams));
+  return focused(clusters, hit_band(map.mixture, beams.range_max), mean_endpoint_range(beams));
 }
 
 std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleView& p,
-                                          const ScanFit& fit,
+                                          const MapField& map,
                                           const std::vector<PoseEstimate>& clusters) {
   const std::size_t n = p.size();
-  const double band = hit_band(fit.mixture(), beams.range_max);
+  const double band = hit_band(map.mixture, beams.range_max);
   if (n == 0 || beams.empty() || !std::isfinite(band)) return 0;
-  if (!focused_on(beams, fit, clusters)) return 0;
-  const FieldWalker walk(fit);
+  if (!focused_on(beams, map, clusters)) return 0;
+  const FieldWalker walk(map.grid, map.field);
   samples_.clear();
   total_ = 0.0;
   const std::size_t stride = std::max<std::size_t>(1, (n + kSample - 1) / kSample);
@@ -161,7 +110,7 @@ std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleVie
   // Beams are independent: decided in parallel, each by its own fixed sample order.
   drop_.assign(beams.size(), 0);
   par::for_each_chunk(beams.size(), kBeamGrain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; ++b) drop_[b] = majority_blocked(beams, b, fit, band);
+    for (std::size_t b = begin; b < end; ++b) drop_[b] = majority_blocked(beams, b, map, band);
   });
   std::size_t kept = 0;
   for (std::size_t b = 0; b < beams.size(); ++b) {

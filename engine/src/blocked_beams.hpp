@@ -5,10 +5,10 @@
 #include <cstddef>
 #include <vector>
 
+#include "map_field.hpp"
 #include "mote/engine/beams.hpp"
 #include "mote/engine/estimate.hpp"
 #include "mote/engine/particles.hpp"
-#include "scan_fit.hpp"
 
 namespace mote {
 
@@ -36,9 +36,9 @@ class BlockedBeamFilter {
   static constexpr double kFocusedWeight = 0.9;
 
   /// Removes the blocked beams from `beams` (keeping their order); returns how many it removed.
-  /// `fit` supplies the map, its distance field and the sensor mixture; `clusters` are the
+  /// `map` supplies the map, its distance field and the sensor mixture; `clusters` are the
   /// belief's clusters before this scan. Nothing is removed unless the belief is focused().
-  std::size_t operator()(BeamSet& beams, const ConstParticleView& particles, const ScanFit& fit,
+  std::size_t operator()(BeamSet& beams, const ConstParticleView& particles, const MapField& map,
                          const std::vector<PoseEstimate>& clusters);
 
   /// Whether the belief has settled closely enough to say where the walls are: clusters that
@@ -53,8 +53,8 @@ class BlockedBeamFilter {
   /// yet those readings are what tells the poses apart.
   [[nodiscard]] static bool focused(const std::vector<PoseEstimate>& clusters, double band,
                                     double range);
-  /// focused() at the hit band of fit's mixture and the mean range of the endpoints of beams.
-  [[nodiscard]] static bool focused_on(const BeamSet& beams, const ScanFit& fit,
+  /// focused() at the hit band of the map's mixture and the mean range of the endpoints of beams.
+  [[nodiscard]] static bool focused_on(const BeamSet& beams, const MapField& map,
                                        const std::vector<PoseEstimate>& clusters);
   /// Position standard deviation plus heading standard deviation times `range`: how far the
   /// cluster's spread moves an endpoint at that range.
@@ -69,10 +69,10 @@ class BlockedBeamFilter {
   };
   // Whether beam b is blocked at sample s (cells per metre k, hit band in metres).
   [[nodiscard]] static bool blocked_at(const BeamSet& beams, std::size_t b, const SensorSample& s,
-                                       const ScanFit& fit, double band);
+                                       const MapField& map, double band);
   // Whether more than kAgreement of the samples' weight finds beam b blocked. Samples are
   // visited in order until the answer is settled, so a clear beam costs half the sample.
-  [[nodiscard]] bool majority_blocked(const BeamSet& beams, std::size_t b, const ScanFit& fit,
+  [[nodiscard]] bool majority_blocked(const BeamSet& beams, std::size_t b, const MapField& map,
                                       double band) const;
 
   static constexpr std::size_t kBeamGrain = 16;  // beams per parallel task

@@ -135,7 +135,8 @@ const std::vector<Key>& keys() {
         field<double>("tempering_ess_fraction", kNum, &LocalizerConfig::tempering_ess_fraction),
         field<double>("tracking_tempering", kNum, &LocalizerConfig::tracking_tempering),
         field<double>("global_particles_per_bin", kNum, &LocalizerConfig::global_particles_per_bin),
-        field<double>("recovery_fit_band", kNum, &LocalizerConfig::recovery_fit_band),
+        field<double>("lost_misfit", kNum, &LocalizerConfig::lost_misfit),
+        field<bool>("relocalize_when_lost", kBool, &LocalizerConfig::relocalize_when_lost),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
         enum_key(
             "ray_casting", "exact, table or table_certified",

@@ -75,7 +75,10 @@ void Localizer::Impl::start_fresh() {
   degenerate = false;
   updates_since_resample = 0;
   recovery.reset();
+  monitor.reset();
+  reset_relocalization();
   odometry_noise.reset();
+  last_fix = {};
   motion = make_motion(config);
   stats = UpdateStats{};
   stats.particles = store.size();
@@ -108,7 +111,12 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
   bool moved = false;
   try {
     executor.run([&] {
-      if (has_odometry) timed(stats.ms.motion, [&] { predict(odometry); });
+      if (has_odometry) {
+        timed(stats.ms.motion, [&] {
+          maybe_relocalize();
+          predict(odometry);
+        });
+      }
       moved = has_odometry;
       timed(stats.ms.sensor, [&] {
         drop_blocked_beams();
@@ -122,12 +130,15 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
         maybe_resample();
         maybe_inject();
       });
-      timed(stats.ms.estimate, [&] { update_estimate(); });
+      timed(stats.ms.estimate, [&] {
+        update_estimate();
+        judge_localization();
+      });
     });
   } catch (...) {
     if (moved) {
       last_odometry = odometry;
-      last_estimate = estimate.best().mean;  // no residual across the failed update
+      last_fix = {};  // no residual across the failed update
       ++step;
     }
     throw;
@@ -154,6 +165,7 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   s.stats.outcome = s.degenerate     ? UpdateOutcome::kUnexplainedScan
                     : s.has_odometry ? UpdateOutcome::kUpdated
                                      : UpdateOutcome::kInitialized;
+  s.count_lost_updates();
   s.adapt_motion_noise(odometry);
   s.last_odometry = odometry;
   s.has_odometry = true;

@@ -44,9 +44,8 @@ void validate_resampling(const LocalizerConfig& c) {
           "resample_ess_fraction", "a fraction in (0, 1]");
   require(probability(c.recovery_alpha_slow), "recovery_alpha_slow", "a rate in [0, 1]");
   require(probability(c.recovery_alpha_fast), "recovery_alpha_fast", "a rate in [0, 1]");
-  require(
-      std::isfinite(c.recovery_fit_band) && c.recovery_fit_band >= 0.0 && c.recovery_fit_band < 1.0,
-      "recovery_fit_band", "a fraction in [0, 1)");
+  require(std::isfinite(c.lost_misfit) && c.lost_misfit > 0.0 && c.lost_misfit < 2.0, "lost_misfit",
+          "a share in (0, 2)");
   // Thrun table 8.3: 0 <= alpha_slow << alpha_fast. Either at 0 disables injection (amcl).
   require(c.recovery_alpha_slow == 0.0 || c.recovery_alpha_fast == 0.0 ||
               c.recovery_alpha_slow < c.recovery_alpha_fast,
@@ -111,7 +110,13 @@ LocalizerConfig nav2_defaults() {
   c.likelihood_tempering = 1.0;
   c.adaptive_motion_noise = false;
   c.unmapped_obstacle_filter = false;
-  c.recovery_fit_band = 0.0;
+  c.relocalize_when_lost = false;
+  c.unknown_cells_block_rays = true;
+  // amcl's formulas: 1 + sum pz^3 for both models, a resample at every update
+  // (resample_interval 1, no ESS gate), and pf_z read as the quantile itself.
+  c.likelihood_combination = LikelihoodCombination::kAmclCubedSum;
+  c.resample_ess_fraction = 1.0;
+  c.kld_z_is_quantile = true;
   return c;
 }
 

@@ -8,17 +8,19 @@
 #include <vector>
 
 #include "blocked_beams.hpp"
+#include "map_field.hpp"
 #include "mote/engine/beam_model.hpp"
 #include "mote/engine/beams.hpp"
 #include "mote/engine/executor.hpp"
 #include "mote/engine/kld.hpp"
 #include "mote/engine/likelihood_field_model.hpp"
+#include "mote/engine/localization_state.hpp"
 #include "mote/engine/localizer.hpp"
 #include "mote/engine/motion.hpp"
 #include "mote/engine/odometry_noise.hpp"
 #include "mote/engine/particles.hpp"
 #include "mote/engine/recovery.hpp"
-#include "scan_fit.hpp"
+#include "mote/engine/scan_match.hpp"
 
 namespace mote {
 
@@ -39,6 +41,7 @@ struct Localizer::Impl {
   bool reject(UpdateOutcome outcome, std::string reason);
   // Selects the beams; returns why they cannot be weighed, or empty when they can.
   [[nodiscard]] std::string select(const LaserScan& scan);
+  void select_endpoints(const LaserScan& scan);  // readings and endpoints
   [[nodiscard]] bool moved_enough(const Pose2& odometry) const;
   [[nodiscard]] bool jumped(const Pose2& odometry) const;
   bool reset_odometry(const Pose2& odometry);
@@ -50,7 +53,14 @@ struct Localizer::Impl {
   void normalize();
   void maybe_resample();
   void maybe_inject();
+  // Re-localization (relocalize.cpp): counts lost updates after judge_localization(), and
+  // before the next motion step widens the belief by a global set when the count calls for it.
+  void count_lost_updates();
+  void maybe_relocalize();
+  void reset_relocalization();
   void update_estimate();
+  // The best hypothesis matched to the map with every valid reading, and the state it gives.
+  void judge_localization();
   // After an update: the residual of the estimate's motion against the odometry's, and the
   // motion model refitted from the residuals so far.
   void adapt_motion_noise(const Pose2& odometry);
@@ -69,14 +79,18 @@ struct Localizer::Impl {
   KldConfig kld;
   KldBins bins;
   AugmentedMcl recovery;
-  ScanFit fit;
+  std::unique_ptr<MapField> field;       // built inside the executor's arena
+  std::unique_ptr<ScanMatcher> matcher;  // on field->field
+  LocalizationMonitor monitor;
   BlockedBeamFilter blocked_filter;
   OdometryNoiseEstimator odometry_noise;
-  Pose2 last_estimate;       // best estimate after the previous update
+  ScanMatch last_fix;        // the refined best pose after the previous update
   PoseSummarizer summarize;  // keeps its scratch memory between updates
   ParticleStore store;
   BeamSet beams;
-  std::vector<float> loglik;  // untempered scan log-likelihood per particle (padded)
+  BeamSet readings;               // every valid reading with an endpoint (the matcher's)
+  std::vector<Point2> endpoints;  // their endpoints in the robot frame
+  std::vector<float> loglik;      // untempered scan log-likelihood per particle (padded)
   LocalizationEstimate estimate;
   UpdateStats stats;
 
@@ -86,6 +100,10 @@ struct Localizer::Impl {
   bool degenerate = false;  // the last scan explained no particle
   Pose2 last_odometry;
   int updates_since_resample = 0;
+  int lost_updates = 0;         // consecutive updates in the lost state
+  int relocalize_after = 0;     // lost updates that call for the next re-localization
+  bool relocalize_due = false;  // re-localize before the next motion step
+  bool settled_once = false;    // one cluster has held the belief since initialization
 };
 
 }  // namespace mote

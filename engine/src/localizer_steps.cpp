@@ -1,6 +1,7 @@
 // The steps of one Localizer update (design.md section 2), each a call into a kernel.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -9,6 +10,7 @@
 #include "mote/engine/resample.hpp"
 #include "mote/engine/tempering.hpp"
 #include "mote/engine/weights.hpp"
+#include "see_through.hpp"
 
 namespace mote {
 
@@ -43,8 +45,10 @@ SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
           .certify = c.ray_casting == RayCasting::kTableCertified,
           .tiles = c.range_table_tiles};
     }
-    return SensorVariant(std::in_place_type<BeamModel>, grid,
-                         BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays}, table);
+    return SensorVariant(
+        std::in_place_type<BeamModel>, grid,
+        BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays, c.likelihood_combination},
+        table);
   }
   return SensorVariant(std::in_place_type<LikelihoodFieldModel>, grid,
                        LikelihoodFieldParams{.mixture = mixture_of(c),
@@ -84,16 +88,22 @@ Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
                 .keep_max_range = config.laser_model_type == LaserModel::kBeam},
       kld(kld_of(config)),
       bins(map.bounds(), config.kld_bin_xy, config.kld_bin_xy, config.kld_bin_theta),
-      recovery({.alpha_slow = config.recovery_alpha_slow,
-                .alpha_fast = config.recovery_alpha_fast,
-                .band = config.recovery_fit_band}),
-      fit(map, mixture_of(config), config.laser_likelihood_max_dist),
-      odometry_noise(OdometryNoiseConfig{.safety = config.motion_noise_margin}),
+      recovery(
+          {.alpha_slow = config.recovery_alpha_slow, .alpha_fast = config.recovery_alpha_fast}),
+      monitor(LocalizationStateConfig{.lost_misfit = config.lost_misfit}),
+      odometry_noise(OdometryNoiseConfig{
+          .safety = config.motion_noise_margin,
+          .prior = {config.alpha1, config.alpha2, config.alpha3, config.alpha4}}),
       summarize(ClusterConfig{.bin_x = config.kld_bin_xy,
                               .bin_y = config.kld_bin_xy,
                               .bin_theta = config.kld_bin_theta}) {
-  // The distance field / Embree scene are built in parallel on the Localizer's own threads.
-  executor.run([&] { sensor = std::make_unique<SensorVariant>(make_sensor(map, config)); });
+  // The distance fields / Embree scene are built in parallel on the Localizer's own threads.
+  executor.run([&] {
+    sensor = std::make_unique<SensorVariant>(make_sensor(map, config));
+    field = std::make_unique<MapField>(map, mixture_of(config), config.laser_likelihood_max_dist);
+  });
+  matcher = std::make_unique<ScanMatcher>(field->signed_field,
+                                          ScanMatchConfig{.scale = config.sigma_hit});
   store.reserve(static_cast<std::size_t>(config.max_particles));
 }
 
@@ -107,6 +117,7 @@ std::string Localizer::Impl::select(const LaserScan& scan) {
   select_beams(scan, selection, beams);
   stats.beams = beams.size();
   if (beams.empty()) return "no valid beam in the scan";
+  select_endpoints(scan);
   // What the ray cast would refuse (ray_setup.cpp) is refused here, before motion has moved the
   // particles: update() must not throw half-way.
   if (!std::ranges::all_of(beams.angle, [](float a) { return std::isfinite(a); })) {
@@ -118,6 +129,20 @@ std::string Localizer::Impl::select(const LaserScan& scan) {
            " m: the beam model needs a positive, finite maximum range (or set laser_max_range)";
   }
   return "";
+}
+
+void Localizer::Impl::select_endpoints(const LaserScan& scan) {
+  BeamSelection every = selection;
+  every.max_beams = std::numeric_limits<int>::max();
+  every.keep_max_range = false;
+  select_beams(scan, every, readings);
+  endpoints.clear();
+  const Pose2& s = readings.sensor_pose;
+  for (std::size_t b = 0; b < readings.size(); ++b) {
+    const double a = s.theta + readings.angle[b];
+    endpoints.push_back(
+        {s.x + readings.range[b] * std::cos(a), s.y + readings.range[b] * std::sin(a)});
+  }
 }
 
 bool Localizer::Impl::moved_enough(const Pose2& odometry) const {
@@ -162,7 +187,8 @@ void Localizer::Impl::predict(const Pose2& odometry) {
 
 void Localizer::Impl::drop_blocked_beams() {
   if (!config.unmapped_obstacle_filter) return;
-  stats.blocked_beams = blocked_filter(beams, std::as_const(store).view(), fit, estimate.clusters);
+  stats.blocked_beams =
+      blocked_filter(beams, std::as_const(store).view(), *field, estimate.clusters);
   stats.beams = beams.size();
   if (beams.empty()) {
     stats.reason =
@@ -192,7 +218,7 @@ void Localizer::Impl::temper() {
   const ParticleView p = store.view();
   double tau = config.likelihood_tempering;
   if (tau == 0.0 && config.tracking_tempering > 0.0 &&
-      BlockedBeamFilter::focused_on(beams, fit, estimate.clusters)) {
+      BlockedBeamFilter::focused_on(beams, *field, estimate.clusters)) {
     tau = config.tracking_tempering;
   }
   if (tau == 0.0) {
@@ -211,15 +237,9 @@ void Localizer::Impl::normalize() {
   degenerate = !result.ok();
   stats.effective_sample_size = result.effective_sample_size;
   stats.log_evidence = beams.empty() ? 0.0 : result.log_mean_likelihood;
-  // Thrun table 8.3, lines 10-11, on the scan fit instead of w_avg (scan_fit.hpp says why),
-  // at the posterior weights: injected particles that explain nothing weigh nothing there,
-  // so only a set whose best hypotheses fit badly lowers it (at the prior weights, each
-  // injection lowered the fit and called for more injection).
-  // A scan without an endpoint (every beam a no-return, the beam model keeps them) says
-  // nothing about how well the map fits: the averages keep their values.
-  // With recovery off (nav2's defaults) nothing reads the fit: it is not computed (0).
-  if (recovery.enabled()) stats.scan_fit = fit(beams, std::as_const(store).view());
-  if (stats.scan_fit > 0.0) recovery.update(std::log(stats.scan_fit));
+  // Thrun table 8.3, lines 10-11, as amcl runs it (off unless its rates are set): the averages
+  // of the scan's mean likelihood. A scan that weighed no beam says nothing.
+  if (recovery.enabled() && !beams.empty()) recovery.update(result.log_mean_likelihood);
   stats.log_w_slow = recovery.log_w_slow();
   stats.log_w_fast = recovery.log_w_fast();
   if (degenerate) {
@@ -253,13 +273,28 @@ void Localizer::Impl::maybe_inject() {
       inject_into_weighted(store.view(), p_inject, map, config.seed, step, config.grain);
 }
 
+namespace {
+
+// Whether the scan constrained a refined pose (some endpoint near a wall, a regular Hessian).
+bool fixed(const ScanMatch& m) { return m.endpoints > 0 && m.covariance.trace() > 0.0; }
+
+}  // namespace
+
 void Localizer::Impl::adapt_motion_noise(const Pose2& odometry) {
-  const Pose2 estimate_now = estimate.best().mean;
-  const bool usable =
-      has_odometry && stats.outcome == UpdateOutcome::kUpdated && stats.injected == 0 &&
-      !beams.empty();  // a motion-only update's estimate follows the odometry: no residual
-  if (usable) odometry_noise.add(last_odometry, odometry, last_estimate, estimate_now);
-  last_estimate = estimate_now;
+  // Residuals between the poses the scans fixed (the refined best hypothesis), never across a
+  // motion-only update (its estimate follows the odometry), a re-localization, an injection or
+  // a lost stretch (the fix is somewhere else), nor from a fix the scan could not constrain.
+  const ScanMatch& now = estimate.refined;
+  const bool usable = has_odometry && stats.outcome == UpdateOutcome::kUpdated &&
+                      stats.injected == 0 && stats.relocalized == 0 && !beams.empty() &&
+                      stats.state != LocalizationState::kLost && fixed(now) && fixed(last_fix);
+  if (usable) {
+    const FixUncertainty fix{.rotation = last_fix.covariance(2, 2) + now.covariance(2, 2),
+                             .translation = last_fix.covariance.topLeftCorner<2, 2>().trace() +
+                                            now.covariance.topLeftCorner<2, 2>().trace()};
+    odometry_noise.add(last_odometry, odometry, last_fix.pose, now.pose, fix);
+  }
+  last_fix = now;
   stats.alphas = {config.alpha1, config.alpha2, config.alpha3, config.alpha4};
   // The fit's terms are the differential model's (two rotations, table 5.6); the omni and
   // Ackermann models read their alphas differently.
@@ -283,6 +318,24 @@ void Localizer::Impl::update_estimate() {
   std::stable_sort(
       estimate.clusters.begin(), estimate.clusters.end(),
       [](const PoseEstimate& a, const PoseEstimate& b) { return a.weight > b.weight; });
+}
+
+void Localizer::Impl::judge_localization() {
+  const PoseEstimate& best = estimate.best();
+  estimate.refined = matcher->match(endpoints, best.mean);
+  // A scan without an endpoint (every reading a no-return) says nothing about the fit: the
+  // state stays as it was.
+  if (endpoints.empty()) {
+    stats.hit_share = stats.see_through = std::numeric_limits<double>::quiet_NaN();
+  } else {
+    stats.hit_share = estimate.refined.hit_share;
+    const FieldWalker walk(map, field->field);
+    stats.see_through =
+        see_through_share(beams, estimate.refined.pose, walk, 2.0 * config.sigma_hit);
+  }
+  stats.state = monitor.update(stats.see_through, stats.hit_share, best.weight);
+  settled_once = settled_once || best.weight >= monitor.config().settled_weight;
+  stats.misfit = monitor.smoothed();
 }
 
 }  // namespace mote

@@ -58,31 +58,49 @@ void OdometryNoiseEstimator::Fit::solve(double& p, double& q) const noexcept {
 }
 
 bool OdometryNoiseEstimator::add(const Pose2& odom_before, const Pose2& odom_after,
-                                 const Pose2& estimate_before,
-                                 const Pose2& estimate_after) noexcept {
+                                 const Pose2& estimate_before, const Pose2& estimate_after,
+                                 const FixUncertainty& fix) noexcept {
   const Pose2 odom = between(odom_before, odom_after);
   const Pose2 moved = between(estimate_before, estimate_after);
   const double e_theta = wrap_angle(moved.theta - odom.theta);
   const double e_xy = std::hypot(moved.x - odom.x, moved.y - odom.y);
-  if (!std::isfinite(e_theta) || !std::isfinite(e_xy) ||
-      std::abs(e_theta) > config_.max_rotation_residual ||
-      e_xy > config_.max_translation_residual) {
-    return false;
-  }
+  if (!std::isfinite(e_theta) || !std::isfinite(e_xy)) return false;
   const Increments inc = increments_of(odom);
   const double rot_sq = inc.rot1_sq + inc.rot2_sq;
+  // The gate: the variance the noise so far and the fixes' uncertainty predict (table 5.6).
+  const OdometryAlphas a = noise();
+  const double noise_rot = a.alpha1 * rot_sq + a.alpha2 * 2.0 * inc.trans_sq;
+  const double noise_xy = a.alpha3 * inc.trans_sq + a.alpha4 * rot_sq;
+  const double k2 = config_.gate_sigmas * config_.gate_sigmas;
+  if (e_theta * e_theta > k2 * (noise_rot + fix.rotation) ||
+      e_xy * e_xy > k2 * (noise_xy + fix.translation)) {
+    return false;
+  }
+  // A fix less certain than the odometry tells little about the odometry (along a corridor the
+  // scan fixes the heading and the lateral position, not the distance travelled): that part of
+  // the residual is left out rather than read as noise.
   const double keep = config_.forgetting;
-  rotation_.add(rot_sq, 2.0 * inc.trans_sq, e_theta * e_theta, keep);
-  translation_.add(inc.trans_sq, rot_sq, e_xy * e_xy, keep);
+  const bool rotation_told = fix.rotation <= noise_rot;
+  const bool translation_told = fix.translation <= noise_xy;
+  if (rotation_told)
+    rotation_.add(rot_sq, 2.0 * inc.trans_sq, e_theta * e_theta - fix.rotation, keep);
+  if (translation_told) translation_.add(inc.trans_sq, rot_sq, e_xy * e_xy - fix.translation, keep);
+  if (!rotation_told && !translation_told) return false;
   samples_ = keep * samples_ + 1.0;
   return true;
 }
 
-std::optional<OdometryAlphas> OdometryNoiseEstimator::alphas() const noexcept {
-  if (samples_ < config_.min_samples) return std::nullopt;
+OdometryAlphas OdometryNoiseEstimator::noise() const noexcept {
+  if (samples_ < config_.min_samples) return config_.prior;
   OdometryAlphas a;
   rotation_.solve(a.alpha1, a.alpha2);
   translation_.solve(a.alpha3, a.alpha4);
+  return a;
+}
+
+std::optional<OdometryAlphas> OdometryNoiseEstimator::alphas() const noexcept {
+  if (samples_ < config_.min_samples) return std::nullopt;
+  const OdometryAlphas a = noise();
   const auto bounded = [&](double alpha) {
     return std::clamp(config_.safety * alpha, config_.alpha_min, config_.alpha_max);
   };

@@ -53,7 +53,7 @@ void AugmentedMcl::update(double log_mean_likelihood) noexcept {
 double AugmentedMcl::injection_probability() const noexcept {
   if (!started_ || !enabled()) return 0.0;
   if (log_slow_ == -std::numeric_limits<double>::infinity()) return 1.0;
-  return std::max(0.0, 1.0 - std::exp(log_fast_ - log_slow_ - std::log1p(-config_.band)));
+  return std::max(0.0, 1.0 - std::exp(log_fast_ - log_slow_));
 }
 
 std::size_t inject_random_particles(const ParticleView& p, double probability,
@@ -117,6 +117,28 @@ std::size_t inject_into_weighted(const ParticleView& p, double probability, cons
       /*join=*/[](std::size_t a, std::size_t b) { return a + b; });
   (void)normalize(p, grain);
   return replaced;
+}
+
+void append_uniform(ParticleStore& store, std::size_t n, double kept, const FreeSpace& space,
+                    std::uint64_t seed, std::uint64_t step, std::size_t grain) {
+  if (n == 0 || space.free_cell_count() == 0) return;
+  const std::size_t old = store.size();
+  store.resize(old + n);
+  const ParticleView p = store.view();
+  const auto kept_log = static_cast<float>(std::log(kept));
+  const auto fresh_log = static_cast<float>(std::log((1.0 - kept) / static_cast<double>(n)));
+  const RngStream rng{seed, step, RngPurpose::kRelocalize};
+  par::for_each_chunk(old + n, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (i < old) {
+        p.logw[i] += kept_log;
+        continue;
+      }
+      p.set_pose(i, free_pose(space, rng, static_cast<std::uint32_t>(i - old)));
+      p.logw[i] = fresh_log;
+    }
+  });
+  (void)normalize(p, grain);
 }
 
 void initialize_gaussian(ParticleStore& store, std::size_t n, const Pose2& mean,

@@ -55,4 +55,12 @@ double amcl_likelihood_field_pz(double d, double range_max, const MixtureParams&
   return p.z_hit * std::exp(-0.5 * d * d / (p.sigma_hit * p.sigma_hit)) + p.z_rand / range_max;
 }
 
+double amcl_beam_pz(double z, double z_star, double range_max, const MixtureParams& p) noexcept {
+  const double miss = z - z_star;
+  double pz = p.z_hit * std::exp(-0.5 * miss * miss / (p.sigma_hit * p.sigma_hit));
+  if (miss < 0.0) pz += p.z_short * p.lambda_short * std::exp(-p.lambda_short * z);
+  pz += z >= range_max ? p.z_max : p.z_rand / range_max;
+  return pz;
+}
+
 }  // namespace mote

@@ -27,7 +27,8 @@ namespace {
   X(resample_ess_fraction) \
   X(recovery_alpha_slow) \
   X(recovery_alpha_fast) \
-  X(recovery_fit_band) \
+  X(lost_misfit) \
+  X(relocalize_when_lost) \
   X(update_min_d) \
   X(update_min_a) \
   X(odom_jump_max_d) \

@@ -48,6 +48,11 @@ void bind_stats(py::module_& m) {
       .value("REJECTED_ODOMETRY", UpdateOutcome::kRejectedOdometry)
       .value("REJECTED_SCAN", UpdateOutcome::kRejectedScan)
       .value("UNEXPLAINED_SCAN", UpdateOutcome::kUnexplainedScan);
+  py::enum_<LocalizationState>(m, "LocalizationState",
+                               "Whether the filter knows where the robot is.")
+      .value("TRACKING", LocalizationState::kTracking)
+      .value("UNCERTAIN", LocalizationState::kUncertain)
+      .value("LOST", LocalizationState::kLost);
   py::class_<PhaseTimes>(m, "PhaseTimes", "Wall-clock milliseconds of each phase of an update.")
       .def_readonly("motion", &PhaseTimes::motion)
       .def_readonly("sensor", &PhaseTimes::sensor)
@@ -71,10 +76,17 @@ void bind_stats(py::module_& m) {
                     "beams left out as blocked by unmapped obstacles")
       .def_readonly("effective_sample_size", &UpdateStats::effective_sample_size)
       .def_readonly("resampled", &UpdateStats::resampled)
-      .def_readonly("injected", &UpdateStats::injected, "recovery particles")
+      .def_readonly("injected", &UpdateStats::injected, "augmented MCL's particles (amcl's rule)")
+      .def_readonly("relocalized", &UpdateStats::relocalized,
+                    "particles a re-localization added before this update")
+      .def_readonly("state", &UpdateStats::state, "tracking, uncertain or lost")
+      .def_readonly("hit_share", &UpdateStats::hit_share,
+                    "share of readings ending within sigma_hit of a surface (refined pose)")
+      .def_readonly("see_through", &UpdateStats::see_through,
+                    "share of beams seeing through a mapped obstacle (refined pose)")
+      .def_readonly("misfit", &UpdateStats::misfit, "the smoothed misfit the state comes from")
       .def_readonly("tempering", &UpdateStats::tempering, "likelihood exponent tau")
       .def_readonly("tempering_trials", &UpdateStats::tempering_trials)
-      .def_readonly("scan_fit", &UpdateStats::scan_fit)
       .def_readonly("log_evidence", &UpdateStats::log_evidence)
       .def_readonly("alphas", &UpdateStats::alphas)
       .def_readonly("log_w_slow", &UpdateStats::log_w_slow)
@@ -84,6 +96,12 @@ void bind_stats(py::module_& m) {
 }
 
 void bind_estimate(py::module_& m) {
+  py::class_<ScanMatch>(m, "ScanMatch", "The best hypothesis matched to the map.")
+      .def_readonly("pose", &ScanMatch::pose, "refined pose (map frame)")
+      .def_readonly("covariance", &ScanMatch::covariance, "3x3 over (x, y, theta), Laplace")
+      .def_readonly("endpoints", &ScanMatch::endpoints, "readings matched")
+      .def_readonly("hit_share", &ScanMatch::hit_share)
+      .def_readonly("iterations", &ScanMatch::iterations);
   py::class_<PoseEstimate>(m, "PoseEstimate", "A weighted Gaussian summary of particles.")
       .def_readonly("mean", &PoseEstimate::mean, "weighted mean (circular for theta)")
       .def_readonly("covariance", &PoseEstimate::covariance, "3x3 over (x, y, theta)")
@@ -93,6 +111,8 @@ void bind_estimate(py::module_& m) {
                                    "The whole set and its clusters, heaviest first.")
       .def_readonly("overall", &LocalizationEstimate::overall)
       .def_readonly("clusters", &LocalizationEstimate::clusters)
+      .def_readonly("refined", &LocalizationEstimate::refined,
+                    "the heaviest cluster's mean matched to the map with every reading")
       .def_property_readonly("best", &LocalizationEstimate::best, "the heaviest cluster")
       .def_property_readonly("mean", [](const LocalizationEstimate& e) { return e.overall.mean; })
       .def_property_readonly("covariance",

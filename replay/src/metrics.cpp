@@ -71,6 +71,23 @@ std::optional<std::size_t> converged_from(const std::vector<PoseError>& errors,
   return std::nullopt;
 }
 
+// RMS position and heading errors and the largest position error of `errors` (not empty).
+TrajectoryErrors::AfterConvergence rms_of(std::span<const PoseError> errors) {
+  TrajectoryErrors::AfterConvergence out;
+  double sum_p = 0.0;
+  double sum_h = 0.0;
+  for (const PoseError& e : errors) {
+    sum_p += e.position_m * e.position_m;
+    sum_h += e.heading_deg * e.heading_deg;
+    out.max_error_m = std::max(out.max_error_m, e.position_m);
+  }
+  out.matched = errors.size();
+  const auto n = static_cast<double>(errors.size());
+  out.ate_rmse_m = std::sqrt(sum_p / n);
+  out.heading_rmse_deg = std::sqrt(sum_h / n);
+  return out;
+}
+
 }  // namespace
 
 std::vector<StampedPose> sort_by_stamp(std::span<const StampedPose> poses) {
@@ -110,18 +127,14 @@ TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
     out.heading_rmse_deg = std::numeric_limits<double>::quiet_NaN();
     return out;
   }
-  double sum_p = 0.0;
-  double sum_h = 0.0;
-  for (const PoseError& e : errors) {
-    sum_p += e.position_m * e.position_m;
-    sum_h += e.heading_deg * e.heading_deg;
-    out.max_error_m = std::max(out.max_error_m, e.position_m);
-  }
-  const auto n = static_cast<double>(errors.size());
-  out.ate_rmse_m = std::sqrt(sum_p / n);
-  out.heading_rmse_deg = std::sqrt(sum_h / n);
+  const TrajectoryErrors::AfterConvergence all = rms_of(errors);
+  out.ate_rmse_m = all.ate_rmse_m;
+  out.heading_rmse_deg = all.heading_rmse_deg;
+  out.max_error_m = all.max_error_m;
   if (const auto from = converged_from(errors, options)) {
     out.converged_at_s = errors[*from].stamp - options.start_stamp;
+    out.after_convergence =
+        rms_of(std::span<const PoseError>(errors).subspan(static_cast<std::size_t>(*from)));
   }
   return out;
 }

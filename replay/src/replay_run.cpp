@@ -48,11 +48,16 @@ void record_update(ReplayResult& result, const Localizer& filter, double stamp) 
                             .blocked_beams = stats.blocked_beams,
                             .effective_sample_size = stats.effective_sample_size,
                             .tempering = stats.tempering,
-                            .scan_fit = stats.scan_fit,
                             .log_evidence = stats.log_evidence,
                             .injected = stats.injected,
+                            .relocalized = stats.relocalized,
                             .resampled = stats.resampled,
-                            .alphas = stats.alphas});
+                            .alphas = stats.alphas,
+                            .state = stats.state,
+                            .hit_share = stats.hit_share,
+                            .see_through = stats.see_through,
+                            .misfit = stats.misfit,
+                            .refined = filter.estimate().refined.pose});
 }
 
 void count_outcome(ReplayResult& result, const UpdateStats& stats) {

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -63,6 +65,41 @@ void write_outcomes(JsonWriter& json, const ReplayResult& r) {
   json.end_object();
 }
 
+// Updates in each localization state, over the run and (with a reference) from the time the
+// run converged on; and how often the filter re-localized.
+void write_states(JsonWriter& json, const ReplayResult& r) {
+  constexpr std::array kStates{LocalizationState::kTracking, LocalizationState::kUncertain,
+                               LocalizationState::kLost};
+  const double from = r.errors && r.errors->converged_at_s
+                          ? r.first_stamp + *r.errors->converged_at_s
+                          : std::numeric_limits<double>::infinity();
+  std::array<std::size_t, 3> all{};
+  std::array<std::size_t, 3> after{};
+  std::size_t relocalizations = 0;
+  for (const UpdateRecord& u : r.updates) {
+    const auto k = static_cast<std::size_t>(u.state);
+    ++all[k];
+    if (u.stamp >= from) ++after[k];
+    relocalizations += u.relocalized > 0 ? 1 : 0;
+  }
+  const auto shares = [&](const char* name, const std::array<std::size_t, 3>& n) {
+    const std::size_t total = n[0] + n[1] + n[2];
+    json.key(name).begin_object();
+    for (const LocalizationState s : kStates) {
+      const auto k = static_cast<std::size_t>(s);
+      json.member(name_of(s),
+                  total > 0 ? static_cast<double>(n[k]) / static_cast<double>(total) : 0.0);
+    }
+    json.end_object();
+  };
+  json.key("localization_state").begin_object();
+  if (!r.updates.empty()) json.member("final", name_of(r.updates.back().state));
+  shares("share", all);
+  if (std::isfinite(from)) shares("share_after_convergence", after);
+  json.member("relocalizations", std::uint64_t{relocalizations});
+  json.end_object();
+}
+
 void write_errors(JsonWriter& json, const ReplayResult& r) {
   if (!r.errors) return;
   json.member("reference_matched", std::uint64_t{r.errors->matched});
@@ -70,6 +107,14 @@ void write_errors(JsonWriter& json, const ReplayResult& r) {
   json.member("heading_rmse_deg", r.errors->heading_rmse_deg);
   json.member("max_error_m", r.errors->max_error_m);
   json.member("converged_at_s", r.errors->converged_at_s);
+  if (const auto& a = r.errors->after_convergence) {
+    json.key("after_convergence").begin_object();
+    json.member("matched", std::uint64_t{a->matched});
+    json.member("ate_rmse_m", a->ate_rmse_m);
+    json.member("heading_rmse_deg", a->heading_rmse_deg);
+    json.member("max_error_m", a->max_error_m);
+    json.end_object();
+  }
 }
 
 // A float as the double of its shortest decimal form (81.83F as 81.83, not 81.83000183105469).
@@ -231,6 +276,7 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   write_timing(json, f);
   write_laser_range(json, result);
   write_outcomes(json, result);
+  write_states(json, result);
   write_errors(json, result);
   write_kidnap(json, result);
   if (result.range_table) write_range_table_json(json, *result.range_table);

@@ -133,6 +133,13 @@ TEST(LoadConfig, Nav2FileStartsFromNav2Defaults) {
   EXPECT_FALSE(c.adaptive_motion_noise);
   EXPECT_FALSE(c.unmapped_obstacle_filter);
   EXPECT_DOUBLE_EQ(c.global_particles_per_bin, 0.0);
+  // amcl's formulas, not mote's: the cubed sum, a resample at every update, pf_z as z itself,
+  // unknown cells blocking rays, no re-localization.
+  EXPECT_EQ(c.likelihood_combination, LikelihoodCombination::kAmclCubedSum);
+  EXPECT_DOUBLE_EQ(c.resample_ess_fraction, 1.0);
+  EXPECT_TRUE(c.kld_z_is_quantile);
+  EXPECT_TRUE(c.unknown_cells_block_rays);
+  EXPECT_FALSE(c.relocalize_when_lost);
 }
 
 TEST(ParseConfig, DefaultsKeyChoosesTheBase) {
@@ -159,7 +166,7 @@ TEST(ParseConfig, DefaultsKeyChoosesTheBase) {
   expect_input_error("likelihood_tempering: 0.3\ntracking_tempering: 0.2\n",
                      "0 when likelihood_tempering fixes the exponent");
   expect_input_error("defaults: nav2\ntracking_tempering: 0.2\n", "tracking_tempering");
-  expect_input_error("recovery_fit_band: 1\n", "recovery_fit_band");
+  expect_input_error("lost_misfit: 2\n", "lost_misfit");
 }
 
 void expect_config_error(const LocalizerConfig& c, const std::string& fragment) {
@@ -255,7 +262,8 @@ LocalizerConfig every_field_changed() {
   c.resample_ess_fraction = 0.4;
   c.recovery_alpha_slow = 0.002;
   c.recovery_alpha_fast = 0.2;
-  c.recovery_fit_band = 0.25;
+  c.lost_misfit = 0.8;
+  c.relocalize_when_lost = false;
   c.update_min_d = 0.1;
   c.update_min_a = 0.05;
   c.odom_jump_max_d = 3.0;
@@ -284,7 +292,7 @@ LocalizerConfig every_field_changed() {
   c.likelihood_tempering = 0.0;  // the default: tracking_tempering needs the adaptive search
   c.tracking_tempering = 0.162786;
   c.tempering_ess_fraction = 0.2;
-  c.unknown_cells_block_rays = false;
+  c.unknown_cells_block_rays = true;
   c.ray_casting = RayCasting::kTable;
   c.range_table_angles = 256;
   c.range_table_budget_mb = 64.0;

@@ -168,10 +168,11 @@ TEST(Cli, IntelKidnappingRecoversWithin30Updates) {
   EXPECT_LE(json_number(report, "recovered_after_updates"), 30.0);
 }
 
-// Issue 15: a ring of eight people (mote crowd: 0.4-1.0 m from the robot) around it for the
-// 20 s of the Intel log that turn the most on the spot, blocking 78% of those scans' beams.
-// With mote's defaults the likelihood field rides it out within the goal for unseen logs
-// (0.10 m); with unmapped_obstacle_filter off it is lost (measured 0.082 m against 1.72 m).
+// A ring of eight people (mote crowd: 0.4-1.0 m from the robot) around it for the 20 s of the
+// Intel log that turn the most on the spot, blocking 78% of those scans' beams. With mote's
+// defaults the likelihood field rides it out within the goal for unseen logs (0.10 m); with
+// unmapped_obstacle_filter (and the re-localization that would find it again) off, the crowd
+// carries it metres away. Measured: ATE 0.093 m (max 0.94 m) against a max error of 3.3 m.
 TEST(Cli, IntelCrowdIsRiddenOutWithTheDefaults) {
   MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
   const fs::path data = yaml.parent_path();
@@ -181,18 +182,20 @@ TEST(Cli, IntelCrowdIsRiddenOutWithTheDefaults) {
   ASSERT_EQ(made.status, 0) << made.err;
   {
     std::ofstream off(dir / "off.yaml");
-    off << "unmapped_obstacle_filter: false\n";
+    off << "unmapped_obstacle_filter: false\nrelocalize_when_lost: false\n";
   }
-  const auto ate = [&](const std::string& extra, const std::string& name) {
+  const auto report = [&](const std::string& extra, const std::string& name) {
     const Outcome o =
         mote("replay --map '" + yaml.string() + "' --log '" + (dir / "crowd.clf").string() +
              "' --reference '" + (data / "intel.gt.tum").string() +
              "' --particles 5000 --quiet --out '" + (dir / name).string() + "'" + extra);
     EXPECT_EQ(o.status, 0) << o.err;
-    return json_number(slurp(dir / name / "report.json"), "ate_rmse_m");
+    return slurp(dir / name / "report.json");
   };
-  EXPECT_LE(ate("", "on"), 0.10);
-  EXPECT_GT(ate(" --config '" + (dir / "off.yaml").string() + "'", "off"), 0.5);
+  EXPECT_LE(json_number(report("", "on"), "ate_rmse_m"), 0.10);
+  EXPECT_GT(
+      json_number(report(" --config '" + (dir / "off.yaml").string() + "'", "off"), "max_error_m"),
+      2.0);
 }
 
 // Issue 16: global localization on the MAC first floor map with 20000 particles ends at the

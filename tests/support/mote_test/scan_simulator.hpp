@@ -18,7 +18,10 @@ namespace mote::test {
 /// A scanner and a driver on one map; deterministic for a seed.
 class ScanSimulator {
  public:
-  ScanSimulator(const OccupancyGrid& grid, std::uint64_t seed) : caster_(grid), rng_(seed) {}
+  /// `options` says what stops a ray (by default occupied and unknown cells, as amcl's beam
+  /// model reads a map; a laser in the building itself sees through cells nobody mapped).
+  ScanSimulator(const OccupancyGrid& grid, std::uint64_t seed, RayCastOptions options = {})
+      : caster_(grid, options), rng_(seed) {}
 
   /// A 180-beam, 180-degree scan from `pose` with range noise sigma (m); 0 noise is exact.
   LaserScan scan_at(const Pose2& pose, double sigma = 0.01, float max_range = 20.0F,

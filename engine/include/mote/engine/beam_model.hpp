@@ -9,6 +9,7 @@
 #include <span>
 
 #include "mote/engine/beams.hpp"
+#include "mote/engine/localizer_config.hpp"
 #include "mote/engine/particles.hpp"
 #include "mote/engine/sensor_model.hpp"
 #include "mote/maps/occupancy_grid.hpp"
@@ -22,6 +23,9 @@ struct BeamModelParams {
   MixtureParams mixture;
   double tempering = 1.0;      ///< tau: log-likelihoods are multiplied by it
   bool unknown_blocks = true;  ///< unknown cells stop rays (amcl's map_calc_range)
+  /// kProduct: sum of log p (table 6.1); kAmclCubedSum: log(1 + sum pz^3) with amcl's terms
+  /// (amcl_beam_pz), for nav2_amcl's defaults.
+  LikelihoodCombination combination = LikelihoodCombination::kProduct;
 };
 
 /// Weighs particles by sum over beams of log p(z_b | z*_b(x)) (eqs. 6.4-6.11), z* ray-cast with

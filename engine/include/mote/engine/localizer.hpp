@@ -34,9 +34,11 @@
 #include "mote/core/pose.hpp"
 #include "mote/core/scan.hpp"
 #include "mote/engine/estimate.hpp"
+#include "mote/engine/localization_state.hpp"
 #include "mote/engine/localizer_config.hpp"
 #include "mote/engine/odometry_noise.hpp"
 #include "mote/engine/particles.hpp"
+#include "mote/engine/scan_match.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 
 namespace mote {
@@ -47,6 +49,9 @@ class RangeTable;
 struct LocalizationEstimate {
   PoseEstimate overall;                ///< the whole particle set
   std::vector<PoseEstimate> clusters;  ///< heaviest first
+  /// The heaviest cluster's mean matched to the map with every valid reading of the last scan
+  /// (scan_match.hpp); its pose is the start pose when the scan had no endpoint.
+  ScanMatch refined;
   /// The heaviest cluster (amcl reports this one as the robot's pose).
   [[nodiscard]] const PoseEstimate& best() const noexcept {
     return clusters.empty() ? overall : clusters.front();
@@ -86,12 +91,12 @@ struct UpdateStats {
   std::size_t blocked_beams = 0;
   double effective_sample_size = 0.0;  ///< of the weighed set
   bool resampled = false;
-  std::size_t injected = 0;  ///< recovery particles drawn from free space
+  std::size_t injected = 0;  ///< augmented MCL's particles drawn from free space (amcl's rule)
+  /// Particles a re-localization added over free space before this update's motion step
+  /// (relocalize_when_lost); 0 on every other update.
+  std::size_t relocalized = 0;
   double tempering = 1.0;    ///< likelihood exponent tau applied to this scan
   int tempering_trials = 0;  ///< ESS evaluations of the adaptive search (0 when fixed)
-  /// Per-beam geometric mean of the likelihood-field density at the posterior particles
-  /// (scan_fit.hpp): what augmented MCL's w_slow / w_fast average; 0 when recovery is off.
-  double scan_fit = 0.0;
   /// log sum_i w_prev,i p(z | x_i)^tau over the weighed set: the filter's estimate of the
   /// scan's predictive likelihood p(z_t | z_1:t-1, u_1:t) under the tempered model
   /// (NormalizeResult::log_mean_likelihood), in nats. Summed over a run it is the log
@@ -100,7 +105,16 @@ struct UpdateStats {
   double log_evidence = 0.0;
   /// The odometry noise the next motion step samples with (config's until adapted).
   OdometryAlphas alphas;
-  double log_w_slow = 0.0;  ///< augmented MCL averages of scan_fit (table 8.3), log domain
+  /// Whether the filter knows where the robot is (localization_state.hpp).
+  LocalizationState state = LocalizationState::kUncertain;
+  /// Share of the scan's readings that end within sigma_hit of an obstacle's surface, and of
+  /// the weighed beams that see through a mapped obstacle, from the refined best pose.
+  double hit_share = 0.0;
+  double see_through = 0.0;
+  /// see_through + (1 - hit_share) averaged over the last updates: what the state is decided
+  /// from (localization_state.hpp).
+  double misfit = 0.0;
+  double log_w_slow = 0.0;  ///< augmented MCL's averages of the mean likelihood, log domain
   double log_w_fast = 0.0;
   PhaseTimes ms;
   [[nodiscard]] bool ran() const noexcept {

@@ -74,22 +74,26 @@ struct LocalizerConfig {
   double kld_bin_xy = 0.5;                    ///< m, KLD histogram bin edge in x and y
   double kld_bin_theta = 0.1745329251994330;  ///< rad (10 degrees), KLD bin edge in heading
 
-  // --- resampling and recovery (Thrun table 8.3) -------------------------------------------
+  // --- resampling, the localization state and re-localization ------------------------------
   int resample_interval = 1;           ///< filter updates between resampling opportunities
   double resample_ess_fraction = 0.5;  ///< resample only when ESS < fraction * N (1 = always)
-  /// w_slow smoothing rate (Thrun table 8.3); 0 disables injection (nav2's default).
-  double recovery_alpha_slow = 0.001;
-  /// w_fast smoothing rate; must exceed alpha_slow. Thrun suggests 0.1; with the dead band
-  /// below, a faster average is safe (one bad scan moves it by 0.3 of the drop, inside the
-  /// band), and on the Intel kidnapping (mote kidnap) the filter is back within 0.3 m after
-  /// 6 updates at 0.3 against 42 at 0.1 and 13 at 0.2, with the same tracking error.
-  double recovery_alpha_fast = 0.3;
-  /// Augmented MCL tracks the scan fit, the per-beam geometric mean of the likelihood-field
-  /// density at the particles (UpdateStats::scan_fit), not the scan likelihood, so its
-  /// injection rate means the same for any beam count, model and tempering. Injection starts
-  /// once the short-term fit falls below (1 - band) of the long-term one (recovery.hpp).
-  /// nav2: 0, the book's rule.
-  double recovery_fit_band = 0.5;
+  /// The smoothed misfit of the scan at the refined best pose (the share of readings that see
+  /// through a mapped obstacle plus the share that end away from any: localization_state.hpp)
+  /// above which the filter is lost. Raise it for a map with much glass or many doors drawn
+  /// closed; it is at most 2.
+  double lost_misfit = 0.6;
+  /// When the filter has been lost for a few updates, add a global set (global_count(), uniform
+  /// over free space) that carries half of the belief, the particles it had keeping the other
+  /// half: the cost of a global initialization's first update, once, instead of injecting
+  /// particles update after update, and a hypothesis that still explains the scans keeps its
+  /// weight (relocalize.cpp). Repeated re-localizations wait twice as long each time. nav2: off.
+  bool relocalize_when_lost = true;
+  /// Augmented MCL as amcl runs it (Thrun table 8.3): w_slow and w_fast average the scan's mean
+  /// likelihood, and max(0, 1 - w_fast / w_slow) of the particles are replaced by free-space
+  /// poses each update. 0 (mote's and nav2's default) turns it off: mote re-localizes when lost
+  /// instead (relocalize_when_lost). Both set: alpha_slow < alpha_fast.
+  double recovery_alpha_slow = 0.0;
+  double recovery_alpha_fast = 0.0;  ///< w_fast smoothing rate (Thrun suggests 0.1)
 
   // --- update gate ---------------------------------------------------------------------------
   double update_min_d = 0.25;  ///< m of translation before the filter updates
@@ -141,7 +145,12 @@ struct LocalizerConfig {
   double tracking_tempering = 0.0;
   /// Adaptive tempering: the scan may lower the ESS to this share of its value before the scan.
   double tempering_ess_fraction = 0.1;
-  bool unknown_cells_block_rays = true;  ///< beam model: unknown cells stop rays (amcl)
+  /// Beam model: unknown cells stop rays as walls do (amcl's map_calc_range). Off (mote's
+  /// default): an unknown cell is one nobody saw, not an obstacle, as the likelihood field reads
+  /// it; a map rendered from log-odds (the dev/ maps) leaves whole rooms grey, and with them
+  /// blocking the beam model was lost on edmonton (23 m) and 0.11 m on acapulco, against
+  /// 0.083 m and 0.073 m with them open (no flags, docs/localization-state.md). nav2: on.
+  bool unknown_cells_block_rays = false;
   /// Beam model: exact Embree casting or a precomputed range table (range_table.hpp; its
   /// accuracy and cost are in BENCHMARKS.md, "Range table").
   RayCasting ray_casting = RayCasting::kExact;

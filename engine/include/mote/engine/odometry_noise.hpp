@@ -1,10 +1,11 @@
 #pragma once
 /// \file
 /// The odometry model's noise (alpha1..alpha4, Thrun et al. table 5.6 in ROS amcl's convention)
-/// estimated online from the filter's own corrections: the motion between successive estimates
-/// against the odometry increment between the same updates. Odometry differs by orders of
-/// magnitude between robots (a log whose odometry under-reports rotation by a third needs
-/// rotation noise that, on a robot with good odometry, lets the estimate drift along a
+/// estimated online from the filter's own corrections: the motion between successive poses the
+/// scans fixed (the scan matcher's refined poses, scan_match.hpp) against the odometry
+/// increment between the same updates, less the uncertainty of those poses themselves. Odometry
+/// differs by orders of magnitude between robots (a log whose odometry under-reports rotation by a
+/// third needs rotation noise that, on a robot with good odometry, lets the estimate drift along a
 /// corridor), so no constant serves both; the residuals of each log say which it is.
 
 #include <optional>
@@ -35,27 +36,45 @@ struct OdometryNoiseConfig {
   double alpha_min = 0.002;  ///< bounds of every fitted alpha
   double alpha_max = 1.0;
   double min_samples = 20.0;  ///< effective samples (after forgetting) before alphas() answers
-  /// Residuals beyond these are relocalizations (a cluster switch, recovery), not odometry
-  /// noise, and are left out of the fit.
-  double max_rotation_residual = 0.5;      ///< rad
-  double max_translation_residual = 0.75;  ///< m
+  /// The noise assumed until min_samples residuals have been fitted (the config's alphas): it
+  /// sets the gate below.
+  OdometryAlphas prior;
+  /// A residual farther than this many standard deviations of what the current fit (or the
+  /// prior) and the poses' own uncertainty predict is a jump of the estimate (a cluster
+  /// switch, a re-localization), not odometry noise, and is left out.
+  double gate_sigmas = 3.0;
 };
 
-/// Exponentially weighted least squares of the squared residuals on the model's variance terms
-/// (table 5.6, lines 5-7): e_theta^2 ~ alpha1 (rot1^2 + rot2^2) + alpha2 2 trans^2 and
-/// |e_xy|^2 ~ alpha3 trans^2 + alpha4 (rot1^2 + rot2^2), each pair fitted with alphas >= 0.
+/// How well the scans fixed the two poses of a residual: the variances of the poses' heading
+/// (rad^2) and position (m^2, x plus y) summed over both ends (the scan matcher's covariances).
+/// They are subtracted from the squared residual: what is left estimates the odometry's share.
+struct FixUncertainty {
+  double rotation = 0.0;
+  double translation = 0.0;
+};
+
+/// Exponentially weighted least squares of the squared residuals, less the poses' own
+/// uncertainty, on the model's variance terms (table 5.6, lines 5-7):
+/// e_theta^2 - u_rot ~ alpha1 (rot1^2 + rot2^2) + alpha2 2 trans^2 and
+/// |e_xy|^2 - u_xy ~ alpha3 trans^2 + alpha4 (rot1^2 + rot2^2), each pair fitted with alphas >= 0.
+/// Residuals between the filter's own estimates (the particle mean) would carry the cloud's
+/// spread, which grows with the alphas the fit returns: the fit would then chase its own
+/// margin. The refined poses depend on the scan and the map only.
 class OdometryNoiseEstimator {
  public:
   explicit OdometryNoiseEstimator(OdometryNoiseConfig config = {}) : config_(config) {}
 
-  /// One update's evidence: odometry from odom_before to odom_after while the estimate moved
-  /// from estimate_before to estimate_after. Returns false when the pair was left out.
+  /// One update's evidence: odometry from odom_before to odom_after while the fixed pose moved
+  /// from estimate_before to estimate_after, whose uncertainty is `fix`. Returns false when
+  /// the pair was left out (the gate).
   bool add(const Pose2& odom_before, const Pose2& odom_after, const Pose2& estimate_before,
-           const Pose2& estimate_after) noexcept;
+           const Pose2& estimate_after, const FixUncertainty& fix = {}) noexcept;
 
   /// safety times the fitted alphas, within [alpha_min, alpha_max]; nullopt until
   /// min_samples residuals have been added.
   [[nodiscard]] std::optional<OdometryAlphas> alphas() const noexcept;
+  /// The fitted alphas without the safety factor and bounds, or the prior before min_samples.
+  [[nodiscard]] OdometryAlphas noise() const noexcept;
 
   /// Forgets every residual.
   void reset() noexcept { *this = OdometryNoiseEstimator(config_); }

@@ -19,11 +19,6 @@ namespace mote {
 struct AugmentedMclConfig {
   double alpha_slow = 0.001;  ///< long-term average rate
   double alpha_fast = 0.1;    ///< short-term average rate
-  /// Dead band: injection starts only once w_fast falls below (1 - band) w_slow, and
-  /// p = max(0, 1 - w_fast / ((1 - band) w_slow)). 0 is the book's rule. A tracked scan's
-  /// likelihood or fit swings by a few tens of percent from update to update (people,
-  /// clutter, glass); without a band each dip would inject particles.
-  double band = 0.0;
 };
 
 /// The long- and short-term averages of the measurement likelihood, w_slow and w_fast, kept in
@@ -38,7 +33,7 @@ class AugmentedMcl {
   /// raises the injection probability: that is how recovery takes over.
   void update(double log_mean_likelihood) noexcept;
 
-  /// Table 8.3, line 13: max(0, 1 - w_fast / w_slow) (with the config's dead band), the probability
+  /// Table 8.3, line 13: max(0, 1 - w_fast / w_slow), the probability
   /// of replacing a particle by a random one; 0 before the first update and when recovery is
   /// disabled.
   [[nodiscard]] double injection_probability() const noexcept;
@@ -82,6 +77,14 @@ std::size_t inject_random_particles(const ParticleView& particles, double probab
 std::size_t inject_into_weighted(const ParticleView& particles, double probability,
                                  const FreeSpace& space, std::uint64_t seed, std::uint64_t step,
                                  std::size_t grain = kDefaultGrain);
+
+/// Re-localization: appends n particles uniform over free space (as initialize_uniform draws
+/// them, from Philox keyed by seed, step and RngPurpose::kRelocalize) that carry 1 - kept of the
+/// belief, while the particles already there keep `kept` of it in their present proportions.
+/// log-weights must be normalized; they are again afterwards. n = 0 or a space without a free
+/// cell adds nothing.
+void append_uniform(ParticleStore& store, std::size_t n, double kept, const FreeSpace& space,
+                    std::uint64_t seed, std::uint64_t step, std::size_t grain = kDefaultGrain);
 
 /// Sets every particle to mean + L n with L L^T = covariance (Cholesky, Eigen) and n standard
 /// normal from Philox (seed, step 0, RngPurpose::kInitial); theta wrapped; uniform weights.

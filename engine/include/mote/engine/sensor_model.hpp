@@ -64,4 +64,11 @@ struct MixtureParams {
 [[nodiscard]] double amcl_likelihood_field_pz(double d, double range_max,
                                               const MixtureParams& p) noexcept;
 
+/// ROS amcl's beam-model term for reading z where the map expects z_star (amcl_laser.cpp,
+/// BeamModel): z_hit exp(-(z - z*)^2 / (2 sigma^2)) (unnormalized), plus z_short lambda
+/// exp(-lambda z) when z < z*, plus z_max at z = z_max, plus z_rand / z_max below it; amcl
+/// combines the terms as 1 + sum(pz^3).
+[[nodiscard]] double amcl_beam_pz(double z, double z_star, double range_max,
+                                  const MixtureParams& p) noexcept;
+
 }  // namespace mote

@@ -80,7 +80,7 @@ NormalizeResult normalize(const ParticleView& particles, std::size_t grain = kDe
 /// The resampling policy: true when ess < fraction * N (amcl-style selective resampling).
 [[nodiscard]] inline bool should_resample(double ess, std::size_t n,
                                           double fraction = 0.5) noexcept {
-  return ess < fraction * static_cast<double>(n);
+  return fraction >= 1.0 || ess < fraction * static_cast<double>(n);
 }
 
 }  // namespace mote

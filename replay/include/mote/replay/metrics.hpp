@@ -40,6 +40,16 @@ struct TrajectoryErrors {
   /// do, and so does a lost stretch; a run whose last two matched estimates are off never
   /// converged. nullopt when no such k exists.
   std::optional<double> converged_at_s;
+  /// The same figures over the matched estimates from converged_at_s on (nullopt when the run
+  /// never converged): global localization's first updates, spread over the building, would
+  /// otherwise dominate a run's ATE.
+  struct AfterConvergence {
+    std::size_t matched = 0;
+    double ate_rmse_m = 0.0;
+    double heading_rmse_deg = 0.0;
+    double max_error_m = 0.0;
+  };
+  std::optional<AfterConvergence> after_convergence;
 };
 
 /// The reference pose nearest in time to `stamp` within `tolerance` s, or nullopt. `reference`

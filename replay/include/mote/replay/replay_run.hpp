@@ -64,11 +64,16 @@ struct UpdateRecord {
   std::size_t blocked_beams = 0;       ///< beams left out by unmapped_obstacle_filter
   double effective_sample_size = 0.0;  ///< of the weighed set
   double tempering = 1.0;              ///< likelihood exponent applied
-  double scan_fit = 0.0;               ///< share of endpoints the map explains (recovery)
   double log_evidence = 0.0;           ///< UpdateStats::log_evidence, nats
-  std::size_t injected = 0;            ///< recovery particles
+  std::size_t injected = 0;            ///< augmented MCL's particles (amcl's rule)
+  std::size_t relocalized = 0;         ///< particles a re-localization added
   bool resampled = false;
   OdometryAlphas alphas;  ///< odometry noise in use after the update
+  LocalizationState state = LocalizationState::kUncertain;  ///< UpdateStats::state
+  double hit_share = 0.0;                                   ///< UpdateStats::hit_share
+  double see_through = 0.0;                                 ///< UpdateStats::see_through
+  double misfit = 0.0;                                      ///< UpdateStats::misfit
+  Pose2 refined;  ///< the best hypothesis matched to the map
 };
 
 /// How a run recovered from a kidnapping (ReplayOptions::kidnapped_at).

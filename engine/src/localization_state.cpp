@@ -1,0 +1,35 @@
+#include "mote/engine/localization_state.hpp"
+
+#include <cmath>
+
+namespace mote {
+
+const char* name_of(LocalizationState state) noexcept {
+  switch (state) {
+    case LocalizationState::kTracking:
+      return "tracking";
+    case LocalizationState::kUncertain:
+      return "uncertain";
+    case LocalizationState::kLost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+LocalizationState LocalizationMonitor::update(double see_through, double hit_share,
+                                              double best_weight) noexcept {
+  const double misfit = see_through + (1.0 - hit_share);
+  if (!std::isfinite(misfit)) return state_;
+  smoothed_ = started_ ? smoothed_ + config_.smoothing * (misfit - smoothed_) : misfit;
+  started_ = true;
+  if (smoothed_ > config_.lost_misfit) {
+    state_ = LocalizationState::kLost;
+  } else if (best_weight >= config_.settled_weight) {
+    state_ = LocalizationState::kTracking;
+  } else {
+    state_ = LocalizationState::kUncertain;
+  }
+  return state_;
+}
+
+}  // namespace mote

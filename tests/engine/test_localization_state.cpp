@@ -1,0 +1,164 @@
+// The localization state: the monitor's rule on its own, and through the Localizer on the
+// recorded Intel map with simulated scans: tracking while it tracks, lost soon after a
+// kidnapping and found again by a re-localization, lost on another building's map, and a
+// re-localization that is a false alarm keeps the hypothesis that explains the scans.
+#include "mote/engine/localization_state.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "mote/engine/localizer.hpp"
+#include "mote/maps/map_loader.hpp"
+#include "mote_test/data.hpp"
+#include "mote_test/drive.hpp"
+
+namespace mote {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr Pose2 kIntelStart{0.600266, -0.032033, -0.354646};  // intel.gt.tum's first pose
+
+TEST(LocalizationMonitor, SmoothsTheMisfitAndNamesTheState) {
+  LocalizationMonitor m({.smoothing = 0.5, .lost_misfit = 0.6, .settled_weight = 0.9});
+  EXPECT_EQ(m.update(0.05, 0.95, 1.0), LocalizationState::kTracking);  // misfit 0.1
+  EXPECT_NEAR(m.smoothed(), 0.1, 1e-12);
+  EXPECT_EQ(m.update(0.05, 0.95, 0.5), LocalizationState::kUncertain);  // fits, not settled
+  // Misfit 1.5 from here: 0.1 -> 0.8 after one update (half way), above the bound.
+  EXPECT_EQ(m.update(0.6, 0.1, 1.0), LocalizationState::kLost);
+  EXPECT_NEAR(m.smoothed(), 0.8, 1e-12);
+  // No reading with an endpoint: nothing to judge by.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(m.update(nan, nan, 1.0), LocalizationState::kLost);
+  EXPECT_NEAR(m.smoothed(), 0.8, 1e-12);
+  EXPECT_EQ(m.update(0.0, 1.0, 1.0), LocalizationState::kTracking);  // 0.8 -> 0.4
+  m.reset();
+  EXPECT_EQ(m.update(0.9, 0.2, 1.0), LocalizationState::kLost);  // starts afresh at 1.7
+  EXPECT_STREQ(name_of(LocalizationState::kUncertain), "uncertain");
+}
+
+class StateOnIntel : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+    map_ = std::make_unique<OccupancyGrid>(load_map(yaml));
+  }
+
+  static LocalizerConfig config() {
+    LocalizerConfig c;
+    c.min_particles = 2000;
+    c.max_particles = 50000;
+    c.update_min_d = 0.0;
+    c.update_min_a = 0.0;
+    return c;
+  }
+
+  static Eigen::Matrix3d start_covariance() {
+    return Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 4 * kDeg * kDeg).asDiagonal();
+  }
+
+  std::unique_ptr<OccupancyGrid> map_;
+};
+
+TEST_F(StateOnIntel, LostSoonAfterAKidnappingAndTrackingAgainOnceRelocalized) {
+  Localizer filter(*map_, config());
+  filter.initialize(kIntelStart, start_covariance());
+  test::Drive drive(*map_, kIntelStart, 13);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  int tracking = 0;
+  for (int k = 0; k < 30; ++k) {
+    drive.feed(filter);
+    tracking += filter.last_update().state == LocalizationState::kTracking ? 1 : 0;
+  }
+  EXPECT_GE(tracking, 29);
+  // Carried 20 steps further without the odometry knowing.
+  test::Drive elsewhere(*map_, drive.truth, 17);
+  for (int k = 0; k < 20; ++k) elsewhere.advance();
+  drive.truth = elsewhere.truth;
+  int lost_at = -1;
+  int relocalized_at = -1;
+  int found_at = -1;
+  for (int k = 0; k < 60 && found_at < 0; ++k) {
+    drive.feed(filter);
+    const UpdateStats& u = filter.last_update();
+    if (lost_at < 0 && u.state == LocalizationState::kLost) lost_at = k;
+    if (relocalized_at < 0 && u.relocalized > 0) relocalized_at = k;
+    const bool near = test::position_error(filter.estimate().best().mean, drive.truth) < 0.3;
+    if (relocalized_at >= 0 && near && u.state == LocalizationState::kTracking) found_at = k;
+  }
+  EXPECT_GE(lost_at, 0);
+  EXPECT_LE(lost_at, 3);
+  EXPECT_GT(relocalized_at, lost_at);
+  EXPECT_GE(found_at, 0) << "not found again within 60 updates";
+}
+
+// Every update judged lost (a bound below any misfit): the filter re-localizes again and
+// again, each time less often, and the hypothesis that explains the scans survives each one.
+TEST_F(StateOnIntel, FalseAlarmsKeepTheHypothesisThatExplainsTheScans) {
+  LocalizerConfig c = config();
+  c.lost_misfit = 1e-6;
+  Localizer filter(*map_, c);
+  filter.initialize(kIntelStart, start_covariance());
+  test::Drive drive(*map_, kIntelStart, 7);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  int relocalizations = 0;
+  double worst = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    drive.feed(filter);
+    relocalizations += filter.last_update().relocalized > 0 ? 1 : 0;
+    if (k >= 5)
+      worst = std::max(worst, test::position_error(filter.estimate().best().mean, drive.truth));
+  }
+  EXPECT_LT(worst, 0.3);
+  // Waits of 3, 6, 12, 24, 48 lost updates: 5 in 100 updates, never one per update.
+  EXPECT_GE(relocalizations, 4);
+  EXPECT_LE(relocalizations, 5);
+}
+
+// Re-localization draws its global set from counter-based streams like everything else: one
+// thread and two give the same particles, bit for bit.
+TEST_F(StateOnIntel, RelocalizationIsBitIdenticalForAnyThreadCount) {
+  const auto run = [&](int threads) {
+    LocalizerConfig c = config();
+    c.lost_misfit = 1e-6;
+    c.threads = threads;
+    Localizer filter(*map_, c);
+    filter.initialize(kIntelStart, start_covariance());
+    test::Drive drive(*map_, kIntelStart, 7);
+    filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+    for (int k = 0; k < 12; ++k) drive.feed(filter);
+    const ConstParticleView p = filter.particles();
+    std::vector<float> all;
+    for (const float* column : {p.x, p.y, p.theta, p.logw})
+      all.insert(all.end(), column, column + p.size());
+    return all;
+  };
+  const std::vector<float> one = run(1);
+  const std::vector<float> two = run(2);
+  ASSERT_EQ(one.size(), two.size());
+  EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)), 0);
+}
+
+TEST_F(StateOnIntel, LostOnAnotherBuildingsMap) {
+  MOTE_REQUIRE_DATA(wean_yaml, "wean/wean_map.yaml");
+  const OccupancyGrid wean = load_map(wean_yaml);
+  Localizer filter(wean, config());
+  filter.initialize_global();
+  test::Drive drive(*map_, kIntelStart, 5);  // Intel's scans
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  int lost = 0;
+  for (int k = 0; k < 60; ++k) {
+    drive.feed(filter);
+    lost += filter.last_update().state == LocalizationState::kLost ? 1 : 0;
+  }
+  EXPECT_GE(lost, 45);
+}
+
+}  // namespace
+}  // namespace mote
