@@ -30,7 +30,13 @@ class BlockedBeamFilter {
  public:
   /// Particles evaluated at most.
   static constexpr std::size_t kSample = 64;
-  /// Share of the belief that must find a beam blocked for it to be left out: a majority.
+  /// Share of the belief that must find a beam blocked for it to be left out: a majority. Fox
+  /// et al. drop a reading at 0.99, but of the probability that the beam model's short term
+  /// explains it; here it is the share of a 64-particle sample whose ray runs free past the
+  /// reading, which the cloud's own spread keeps below 0.99 for most crowd readings: at 0.99
+  /// the Intel crowd (mote crowd) carried the filter off (ATE 3.72 m against 0.058 m at 0.5).
+  /// What a wrong but tight belief drops is still seen: the localization state judges every
+  /// reading at the refined pose, not the beams this filter keeps.
   static constexpr double kAgreement = 0.5;
   /// Share of the belief that settled hypotheses must hold for the filter to run (focused()).
   static constexpr double kFocusedWeight = 0.9;

@@ -40,15 +40,19 @@ Localizer::~Localizer() = default;
 Localizer::Localizer(Localizer&&) noexcept = default;
 Localizer& Localizer::operator=(Localizer&&) noexcept = default;
 
-std::size_t Localizer::Impl::global_count() const {
-  const auto max_n = static_cast<std::size_t>(config.max_particles);
-  if (config.global_particles_per_bin <= 0.0) return max_n;
+double Localizer::Impl::free_bins() const {
   // KLD bins of free space: free area over the bin area, times the heading bins.
   const double cell_area = map.resolution() * map.resolution();
   const double xy_bins = static_cast<double>(map.free_cell_count()) * cell_area /
                          (config.kld_bin_xy * config.kld_bin_xy);
   const double theta_bins = std::ceil(2.0 * std::numbers::pi / config.kld_bin_theta);
-  const double wanted = std::ceil(config.global_particles_per_bin * xy_bins * theta_bins);
+  return xy_bins * theta_bins;
+}
+
+std::size_t Localizer::Impl::global_count() const {
+  const auto max_n = static_cast<std::size_t>(config.max_particles);
+  if (config.global_particles_per_bin <= 0.0) return max_n;
+  const double wanted = std::ceil(config.global_particles_per_bin * free_bins());
   return static_cast<std::size_t>(
       std::clamp(wanted, static_cast<double>(config.min_particles), static_cast<double>(max_n)));
 }
@@ -174,6 +178,17 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   s.stats.particles = s.store.size();
   s.stats.ms.total = ms_since(start);
   return true;
+}
+
+GlobalSetSize Localizer::global_set() const noexcept {
+  const Impl& s = *impl_;
+  const std::size_t n = s.global_count();
+  const double bins = s.free_bins();
+  return {.particles = n,
+          .per_bin = bins > 0.0 ? static_cast<double>(n) / bins : 0.0,
+          .capped = s.config.global_particles_per_bin > 0.0 &&
+                    s.config.global_particles_per_bin * bins >
+                        static_cast<double>(s.config.max_particles)};
 }
 
 const LocalizationEstimate& Localizer::estimate() const noexcept { return impl_->estimate; }

@@ -68,6 +68,7 @@ struct Localizer::Impl {
   // Initialization (localizer.cpp): forget everything but the map and the config.
   void start_fresh();
   [[nodiscard]] std::size_t global_count() const;  // global_particles_per_bin's count
+  [[nodiscard]] double free_bins() const;          // KLD bins of free space
   void keep_kld_prefix();  // cut a fresh i.i.d. set to the KLD count of its prefix
 
   LocalizerConfig config;

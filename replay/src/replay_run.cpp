@@ -121,6 +121,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   auto source = open_scan_log(options.log, options.reader);
   Localizer filter(result.map, options.config);
   result.threads = filter.threads();
+  result.global_set = filter.global_set();
   const RangeTable* table = filter.range_table();
   if (table) {
     result.range_table = summarize_range_table(

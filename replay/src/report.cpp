@@ -98,6 +98,11 @@ void write_states(JsonWriter& json, const ReplayResult& r) {
   if (std::isfinite(from)) shares("share_after_convergence", after);
   json.member("relocalizations", std::uint64_t{relocalizations});
   json.end_object();
+  json.key("global_set").begin_object();
+  json.member("particles", std::uint64_t{r.global_set.particles});
+  json.member("per_bin", r.global_set.per_bin);
+  json.member("capped", r.global_set.capped);
+  json.end_object();
 }
 
 void write_errors(JsonWriter& json, const ReplayResult& r) {
@@ -284,6 +289,25 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   json.end_object();
 }
 
+// "tracking 97 % / uncertain 1 % / lost 2 %, ends tracking, 0 re-localizations".
+std::string state_text(const ReplayResult& r) {
+  std::array<std::size_t, 3> n{};
+  std::size_t relocalizations = 0;
+  for (const UpdateRecord& u : r.updates) {
+    ++n[static_cast<std::size_t>(u.state)];
+    relocalizations += u.relocalized > 0 ? 1 : 0;
+  }
+  const double total = std::max<double>(1.0, static_cast<double>(r.updates.size()));
+  const auto pct = [&](LocalizationState s) {
+    return std::string(name_of(s)) + " " +
+           str(100.0 * static_cast<double>(n[static_cast<std::size_t>(s)]) / total, 0) + " %";
+  };
+  std::string text = pct(LocalizationState::kTracking) + " / " +
+                     pct(LocalizationState::kUncertain) + " / " + pct(LocalizationState::kLost);
+  if (!r.updates.empty()) text += std::string(", ends ") + name_of(r.updates.back().state);
+  return text + ", " + std::to_string(relocalizations) + " re-localizations";
+}
+
 void print_summary(std::ostream& out, const ReplayResult& result, const ReportOptions& options) {
   const RunFigures f = run_figures(result);
   out << "mote replay summary\n";
@@ -291,6 +315,13 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "model", model_name(result.config.laser_model_type));
   row(out, "threads", std::to_string(result.threads));
   row(out, "particles (mean)", str(f.particles_mean, 0));
+  row(out, "localization", state_text(result));
+  if (result.global_set.capped) {
+    row(out, "global set",
+        "capped at max_particles: " + std::to_string(result.global_set.particles) + " particles, " +
+            str(result.global_set.per_bin, 2) + " per KLD bin (asked " +
+            str(result.config.global_particles_per_bin, 1) + "); raise max_particles");
+  }
   row(out, "tempering", tempering_text(result));
   row(out, "update ms", format_ms(f.update_ms));
   row(out, "particle-beams/s", str(f.particle_beams_per_s / 1e6, 1) + " M");

@@ -123,6 +123,15 @@ struct UpdateStats {
   }
 };
 
+/// The global set initialize_global() and a re-localization draw over free space.
+struct GlobalSetSize {
+  std::size_t particles = 0;  ///< particles drawn
+  double per_bin = 0.0;       ///< particles per KLD bin of free space they come to
+  /// global_particles_per_bin would need more than max_particles on this map: the set is
+  /// thinner than asked for (per_bin says how thin), and a look-alike place is likelier to win.
+  bool capped = false;
+};
+
 /// Monte Carlo localization on a fixed occupancy grid.
 class Localizer {
  public:
@@ -160,6 +169,8 @@ class Localizer {
   /// Statistics of the last update() call (contents change with the next update()).
   [[nodiscard]] const UpdateStats& last_update() const noexcept;
   [[nodiscard]] const LocalizerConfig& config() const noexcept;
+  /// The size of the global set this map and config give, and whether max_particles cut it.
+  [[nodiscard]] GlobalSetSize global_set() const noexcept;
   /// Threads the filter runs on.
   [[nodiscard]] int threads() const noexcept;
   /// The beam model's range table (ray_casting: table), or nullptr (its stats() say what it

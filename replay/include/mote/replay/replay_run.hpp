@@ -97,6 +97,7 @@ struct ReplayResult {
   OccupancyGrid map;                    ///< the map the run used
   LocalizerConfig config;               ///< the config it ran with
   int threads = 0;                      ///< threads the filter ran on
+  GlobalSetSize global_set;             ///< what a global start or a re-localization draws
   std::size_t scans = 0;                ///< scan frames read
   double first_stamp = 0.0;             ///< s, stamp of the first scan
   std::vector<StampedPose> trajectory;  ///< best-cluster mean after every update that ran
