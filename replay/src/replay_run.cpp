@@ -39,7 +39,8 @@ void initialize(Localizer& filter, const ReplayOptions& options,
 
 void record_update(ReplayResult& result, const Localizer& filter, double stamp) {
   const UpdateStats& stats = filter.last_update();
-  result.trajectory.push_back({stamp, filter.estimate().best().mean});
+  result.trajectory.push_back({stamp, filter.estimate().refined.pose});
+  result.particle_trajectory.push_back({stamp, filter.estimate().best().mean});
   result.updates.push_back({.stamp = stamp,
                             .ms = stats.ms,
                             .particles = stats.particles,
@@ -144,6 +145,8 @@ ReplayResult run_replay(const ReplayOptions& options) {
     MetricOptions metrics = options.metrics;
     metrics.start_stamp = result.first_stamp;
     result.errors = compare_trajectories(result.trajectory, sorted_reference, metrics);
+    result.particle_errors =
+        compare_trajectories(result.particle_trajectory, sorted_reference, metrics);
     if (options.kidnapped_at) result.kidnap = kidnap_recovery(result, options, sorted_reference);
   }
   return result;

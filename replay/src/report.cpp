@@ -112,6 +112,13 @@ void write_errors(JsonWriter& json, const ReplayResult& r) {
   json.member("heading_rmse_deg", r.errors->heading_rmse_deg);
   json.member("max_error_m", r.errors->max_error_m);
   json.member("converged_at_s", r.errors->converged_at_s);
+  if (r.particle_errors) {
+    json.key("particle_mean").begin_object();
+    json.member("ate_rmse_m", r.particle_errors->ate_rmse_m);
+    json.member("heading_rmse_deg", r.particle_errors->heading_rmse_deg);
+    json.member("max_error_m", r.particle_errors->max_error_m);
+    json.end_object();
+  }
   if (const auto& a = r.errors->after_convergence) {
     json.key("after_convergence").begin_object();
     json.member("matched", std::uint64_t{a->matched});

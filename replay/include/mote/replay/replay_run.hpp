@@ -94,14 +94,17 @@ struct ReplayResult {
   /// An empty result for a run on `grid` with `cfg`.
   ReplayResult(OccupancyGrid grid, LocalizerConfig cfg) : map(std::move(grid)), config(cfg) {}
 
-  OccupancyGrid map;                    ///< the map the run used
-  LocalizerConfig config;               ///< the config it ran with
-  int threads = 0;                      ///< threads the filter ran on
-  GlobalSetSize global_set;             ///< what a global start or a re-localization draws
-  std::size_t scans = 0;                ///< scan frames read
-  double first_stamp = 0.0;             ///< s, stamp of the first scan
-  std::vector<StampedPose> trajectory;  ///< best-cluster mean after every update that ran
-  std::vector<UpdateRecord> updates;    ///< one per update that ran
+  OccupancyGrid map;         ///< the map the run used
+  LocalizerConfig config;    ///< the config it ran with
+  int threads = 0;           ///< threads the filter ran on
+  GlobalSetSize global_set;  ///< what a global start or a re-localization draws
+  std::size_t scans = 0;     ///< scan frames read
+  double first_stamp = 0.0;  ///< s, stamp of the first scan
+  /// The estimate after every update that ran: the heaviest cluster's mean matched to the map
+  /// (LocalizationEstimate::refined).
+  std::vector<StampedPose> trajectory;
+  std::vector<StampedPose> particle_trajectory;       ///< the heaviest cluster's mean itself
+  std::vector<UpdateRecord> updates;                  ///< one per update that ran
   std::array<std::size_t, kOutcomeCount> outcomes{};  ///< update() calls by UpdateOutcome
   std::string first_unusual_reason;                   ///< reason of the first non-normal outcome
   ReadStats reader;                                   ///< what the log reader skipped
@@ -109,10 +112,11 @@ struct ReplayResult {
   std::string laser_range_max_source;      ///< where it came from (ScanSource::range_max_source)
   std::vector<StampedPose> reference;      ///< the reference trajectory (may be empty)
   std::optional<TrajectoryErrors> errors;  ///< with a reference
-  std::optional<KidnapRecovery> kidnap;    ///< with a reference and kidnapped_at
-  std::vector<Pose2> final_particles;      ///< the particle cloud after the last scan
-  double wall_s = 0.0;                     ///< s, wall-clock time of the whole loop
-  double read_s = 0.0;                     ///< s of wall_s spent in the log reader's next()
+  std::optional<TrajectoryErrors> particle_errors;  ///< of particle_trajectory, with a reference
+  std::optional<KidnapRecovery> kidnap;             ///< with a reference and kidnapped_at
+  std::vector<Pose2> final_particles;               ///< the particle cloud after the last scan
+  double wall_s = 0.0;                              ///< s, wall-clock time of the whole loop
+  double read_s = 0.0;                           ///< s of wall_s spent in the log reader's next()
   std::optional<RangeTableSummary> range_table;  ///< the beam model's table (ray_casting: table)
 };
 
