@@ -26,7 +26,7 @@
 /// docs/localization-state.md gives the measurements behind the bound: at the true pose the
 /// misfit of every shared log with reference poses and of the DIS and ROS 2 recordings stays
 /// below it on every update; on Wean (a map drawn years before its log, doors closed) it is
-/// above it on 5-10 % of the updates; with another building's map it is above it on 76-100 %.
+/// above it on 11-12 % of the updates; with another building's map it is above it on 76-100 %.
 
 #include <cstdint>
 
