@@ -38,7 +38,7 @@ struct OdometryNoiseConfig {
   double min_samples = 20.0;  ///< effective samples (after forgetting) before alphas() answers
   /// The noise assumed until min_samples residuals have been fitted (the config's alphas): it
   /// sets the gate below.
-  OdometryAlphas prior;
+  OdometryAlphas prior{};
   /// A residual farther than this many standard deviations of what the current fit (or the
   /// prior) and the poses' own uncertainty predict is a jump of the estimate (a cluster
   /// switch, a re-localization), not odometry noise, and is left out.
