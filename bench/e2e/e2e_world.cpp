@@ -5,7 +5,7 @@
 
 #include "mote/core/error.hpp"
 #include "mote/maps/map_loader.hpp"
-#include "mote/replay/simulate.hpp"
+#include "mote/sim/simulate.hpp"
 #include "mote_bench/data.hpp"
 
 namespace mote::bench {
@@ -14,8 +14,8 @@ namespace {
 
 // A SICK LMS-like laser that sees every wall: no dropouts and a range beyond the map, so every
 // beam of a scan is a valid return and a case's beam count is the count the models use.
-replay::SimulationConfig drive_config(int beams) {
-  replay::SimulationConfig config;
+sim::SimulationConfig drive_config(int beams) {
+  sim::SimulationConfig config;
   config.seconds = 60.0;
   config.seed = 7;
   config.beams = beams;
@@ -34,7 +34,7 @@ World map_world() {
   const std::filesystem::path intel = data_dir() / "intel/intel.yaml";
   if (std::filesystem::exists(intel)) return empty_world("intel", load_map(intel));
   return empty_world("floorplan (bundled; Intel not found in " + data_dir().string() + ")",
-                     load_map(replay::bundled_map_path()));
+                     load_map(sim::bundled_map_path()));
 }
 
 bool same(const Pose2& a, const Pose2& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; }
@@ -43,7 +43,7 @@ bool same(const Pose2& a, const Pose2& b) { return a.x == b.x && a.y == b.y && a
 // purpose, so runs that differ only in beam count drive the same poses; checked here because
 // the benchmark pairs each beam count's scans with one trajectory.
 void add_scans(World& w, int beams) {
-  const replay::Simulation sim = replay::simulate(w.map, drive_config(beams));
+  const sim::Simulation sim = sim::simulate(w.map, drive_config(beams));
   const bool first = w.truth.empty();
   std::vector<LaserScan>& scans = w.scans[beams];
   std::size_t kept = 0;

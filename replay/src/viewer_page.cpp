@@ -108,7 +108,7 @@ void write_map(std::ostream& out, const OccupancyGrid& map) {
 }
 
 // Poses as u, v in grid cells and the heading in the grid frame; stamps in s after t0.
-void write_poses(std::ostream& out, std::string_view key, std::span<const StampedPose> poses,
+void write_poses(std::ostream& out, std::string_view key, std::span<const logs::StampedPose> poses,
                  const OccupancyGrid& map, double t0) {
   const FixedPointGrid grid(map);
   out << ",\"" << key << "\":[";
@@ -130,13 +130,13 @@ void write_poses(std::ostream& out, std::string_view key, std::span<const Stampe
 
 // Position error of each update against the reference pose matched to its stamp (NaN: none).
 std::vector<double> position_errors(const ReplayResult& result) {
-  const std::vector<StampedPose> reference = sort_by_stamp(result.reference);
+  const std::vector<logs::StampedPose> reference = logs::sort_by_stamp(result.reference);
   std::vector<double> errors(result.trajectory.size(), std::nan(""));
   if (reference.empty()) return errors;
   const double tolerance = MetricOptions{}.match_tolerance_s;
   for (std::size_t k = 0; k < errors.size(); ++k) {
-    const StampedPose& e = result.trajectory[k];
-    if (const auto match = match_reference(reference, e.stamp, tolerance))
+    const logs::StampedPose& e = result.trajectory[k];
+    if (const auto match = logs::match_reference(reference, e.stamp, tolerance))
       errors[k] = std::hypot(e.pose.x - match->pose.x, e.pose.y - match->pose.y);
   }
   return errors;
@@ -185,7 +185,8 @@ void write_viewer_page(std::ostream& out, const ReplayResult& result,
   out << ",\"t0\":";
   write_string(out, std::to_string(result.first_stamp));
   write_poses(out, "estimate", result.trajectory, result.map, result.first_stamp);
-  write_poses(out, "reference", sort_by_stamp(result.reference), result.map, result.first_stamp);
+  write_poses(out, "reference", logs::sort_by_stamp(result.reference), result.map,
+              result.first_stamp);
   write_statistics(out, result);
   write_array(out, "clusters", recording.clusters.size(),
               [&](std::size_t k) { return static_cast<double>(recording.clusters[k]); });

@@ -3,17 +3,17 @@
 #include <cstdint>
 
 #include "fuzz_support.hpp"
-#include "mote/replay/scan_source.hpp"
+#include "mote/logs/scan_source.hpp"
 
 namespace {
 
 void read_log(const std::filesystem::path& path, bool lenient) {
-  mote::replay::ReaderOptions options;
+  mote::logs::ReaderOptions options;
   options.lenient = lenient;
-  auto source = mote::replay::open_carmen_log(path, options);
+  auto source = mote::logs::open_carmen_log(path, options);
   std::size_t frames = 0;
   while (source->next()) ++frames;
-  const mote::replay::ReadStats stats = source->stats();
+  const mote::logs::ReadStats stats = source->stats();
   if (!lenient && stats.records_skipped != 0) mote::fuzz::finding("strict reader skipped records");
   if (stats.records_skipped > 0 && stats.first_error.empty()) {
     mote::fuzz::finding("records skipped without a first error");

@@ -4,18 +4,18 @@
 #include <cstdint>
 
 #include "fuzz_support.hpp"
-#include "mote/replay/scan_source.hpp"
+#include "mote/logs/scan_source.hpp"
 
 namespace {
 
 void read_mcap(const std::filesystem::path& path, bool lenient) {
-  mote::replay::ReaderOptions options;
+  mote::logs::ReaderOptions options;
   options.lenient = lenient;
   options.max_chunk_bytes = std::size_t{4} << 20U;  // as fuzz_ros_bag: keeps each run fast
-  auto source = mote::replay::open_ros2_bag(path, options);
+  auto source = mote::logs::open_ros2_bag(path, options);
   while (source->next()) {
   }
-  const mote::replay::ReadStats stats = source->stats();
+  const mote::logs::ReadStats stats = source->stats();
   if (!lenient && stats.records_skipped != 0) mote::fuzz::finding("strict reader skipped records");
   if (stats.records_skipped > 0 && stats.first_error.empty()) {
     mote::fuzz::finding("records skipped without a first error");

@@ -3,20 +3,20 @@
 #include <cstdint>
 
 #include "fuzz_support.hpp"
-#include "mote/replay/scan_source.hpp"
+#include "mote/logs/scan_source.hpp"
 
 namespace {
 
 void read_bag(const std::filesystem::path& path, bool lenient) {
-  mote::replay::ReaderOptions options;
+  mote::logs::ReaderOptions options;
   options.lenient = lenient;
   // The default 128 MiB chunk limit is checked by the tests; a smaller one keeps each run fast
   // (chunk buffers are allocated at their declared size before decompression).
   options.max_chunk_bytes = std::size_t{4} << 20U;
-  auto source = mote::replay::open_ros_bag(path, options);
+  auto source = mote::logs::open_ros_bag(path, options);
   while (source->next()) {
   }
-  const mote::replay::ReadStats stats = source->stats();
+  const mote::logs::ReadStats stats = source->stats();
   if (!lenient && stats.records_skipped != 0) mote::fuzz::finding("strict reader skipped records");
   if (stats.records_skipped > 0 && stats.first_error.empty()) {
     mote::fuzz::finding("records skipped without a first error");

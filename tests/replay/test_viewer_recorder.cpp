@@ -30,8 +30,8 @@ OccupancyGrid room(Pose2 origin = {}) {
 }
 
 // 90 beams over 180 degrees, 2 m each, the last one "no return".
-ScanFrame frame_at_start() {
-  ScanFrame f;
+logs::ScanFrame frame_at_start() {
+  logs::ScanFrame f;
   f.scan.angle_min = static_cast<float>(-std::numbers::pi / 2);
   f.scan.angle_increment = static_cast<float>(std::numbers::pi / 90);
   f.scan.range_min = 0.1F;
@@ -69,7 +69,7 @@ TEST(ViewerRecorder, DecimatesToTheCapAndScalesWeightsToTheHeaviest) {
   config.threads = 1;
   Localizer filter(map, config);
   filter.initialize_global();
-  const ScanFrame frame = frame_at_start();
+  const logs::ScanFrame frame = frame_at_start();
   ASSERT_TRUE(filter.update(frame.odometry, frame.scan));
   ViewerRecorder recorder(map);
   recorder.record(filter, frame);
@@ -107,7 +107,7 @@ TEST(ViewerPage, EmbedsTheDataInOneScriptBlock) {
   config.threads = 1;
   Localizer filter(map, config);
   filter.initialize({5.0, 3.0, 0.0}, Eigen::Matrix3d::Identity() * 0.01);
-  const ScanFrame frame = frame_at_start();
+  const logs::ScanFrame frame = frame_at_start();
   ASSERT_TRUE(filter.update(frame.odometry, frame.scan));
   ReplayResult result(map, config);
   result.trajectory.push_back({frame.stamp, filter.estimate().best().mean});

@@ -18,9 +18,9 @@
 #include "mote/core/free_space.hpp"
 #include "mote/core/pose.hpp"
 #include "mote/engine/localizer.hpp"
+#include "mote/logs/scan_source.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 #include "mote/replay/replay_run.hpp"
-#include "mote/replay/scan_source.hpp"
 
 namespace mote::replay {
 
@@ -95,7 +95,7 @@ class ViewerRecorder {
  public:
   explicit ViewerRecorder(const OccupancyGrid& map) : grid_(map) {}
   /// Records the filter's state after an update that ran on `frame`.
-  void record(const Localizer& filter, const ScanFrame& frame);
+  void record(const Localizer& filter, const logs::ScanFrame& frame);
   [[nodiscard]] const ViewerRecording& recording() const noexcept { return recording_; }
 
  private:
