@@ -63,6 +63,15 @@ double ByteReader::f64(const char* what) {
   return v;
 }
 
+std::uint32_t ByteReader::sequence(const char* what, std::size_t min_element_bytes) {
+  const std::size_t at = pos_;
+  const std::uint32_t n = u32((std::string(what) + " length").c_str());
+  if (min_element_bytes > 0 && n > remaining() / min_element_bytes) {
+    throw BagDecodeError{at, std::string(what) + " length exceeds the message"};
+  }
+  return n;
+}
+
 double ByteReader::time(const char* what) {
   const std::uint32_t sec = u32(what);
   const std::uint32_t nsec = u32(what);

@@ -47,6 +47,12 @@ class ByteReader {
   double time(const char* what);
   /// A uint32-length-prefixed string.
   std::string_view string(const char* what) { return take(u32(what), what); }
+  /// The element count of a uint32-length-prefixed array whose elements take at least
+  /// `min_element_bytes` each; throws when that many cannot fit in the rest of the buffer. With
+  /// skip(), the calls CdrReader has too, so that one decoder body reads either format.
+  std::uint32_t sequence(const char* what, std::size_t min_element_bytes);
+  /// Skips `n` elements of `size` bytes each.
+  void skip(std::size_t n, std::size_t size, const char* what) { (void)take(n * size, what); }
 
  private:
   std::string_view bytes_;

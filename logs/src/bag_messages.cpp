@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "bag_format.hpp"
+#include "laser_scan_fields.hpp"
 #include "mote/logs/tum.hpp"
 
 namespace mote::logs::detail {
@@ -69,26 +70,7 @@ ScanMessage decode_laser_scan(std::string_view bytes) {
   const Header h = read_header(r);
   m.frame_id = h.frame_id;
   m.scan.stamp = h.stamp;
-  m.scan.angle_min = r.f32("angle_min");
-  (void)r.f32("angle_max");
-  m.scan.angle_increment = r.f32("angle_increment");
-  (void)r.f32("time_increment");
-  (void)r.f32("scan_time");
-  m.scan.range_min = r.f32("range_min");
-  m.scan.range_max = r.f32("range_max");
-  if (!std::isfinite(m.scan.angle_min) || !std::isfinite(m.scan.angle_increment) ||
-      !std::isfinite(m.scan.range_min) || !(m.scan.range_max > 0.0F)) {
-    throw BagDecodeError{r.position(), "LaserScan angles or range limits are not finite"};
-  }
-  const std::size_t at = r.position();
-  const std::uint32_t n = r.u32("ranges length");
-  if (n > r.remaining() / 4) throw BagDecodeError{at, "ranges length exceeds the message"};
-  m.scan.ranges.resize(n);
-  for (float& range : m.scan.ranges) range = r.f32("range");  // NaN/inf kept: "no return"
-  const std::size_t at_i = r.position();
-  const std::uint32_t n_i = r.u32("intensities length");
-  if (n_i > r.remaining() / 4) throw BagDecodeError{at_i, "intensities length exceeds the message"};
-  (void)r.take(std::size_t{n_i} * 4, "intensities");
+  read_laser_scan_fields(r, m.scan);
   expect_end(r, "LaserScan");
   return m;
 }

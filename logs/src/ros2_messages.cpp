@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "cdr.hpp"
+#include "laser_scan_fields.hpp"
 #include "mote/logs/tum.hpp"
 
 namespace mote::logs::detail {
@@ -62,20 +63,7 @@ ScanMessage decode_laser_scan_cdr(std::string_view bytes) {
   const Header h = read_header(r);
   m.frame_id = h.frame_id;
   m.scan.stamp = h.stamp;
-  m.scan.angle_min = r.f32("angle_min");
-  (void)r.f32("angle_max");
-  m.scan.angle_increment = r.f32("angle_increment");
-  (void)r.f32("time_increment");
-  (void)r.f32("scan_time");
-  m.scan.range_min = r.f32("range_min");
-  m.scan.range_max = r.f32("range_max");
-  if (!std::isfinite(m.scan.angle_min) || !std::isfinite(m.scan.angle_increment) ||
-      !std::isfinite(m.scan.range_min) || !(m.scan.range_max > 0.0F)) {
-    throw BagDecodeError{r.position(), "LaserScan angles or range limits are not finite"};
-  }
-  m.scan.ranges.resize(r.sequence("ranges", 4));
-  for (float& range : m.scan.ranges) range = r.f32("range");  // NaN/inf kept: "no return"
-  r.skip(r.sequence("intensities", 4), 4, "intensities");
+  read_laser_scan_fields(r, m.scan);
   r.expect_end("LaserScan");
   return m;
 }
