@@ -70,7 +70,8 @@ TEST(OdometryStandardErrors, MatchTheSpreadOfTheEstimatesOverDraws) {
   constexpr int kDraws = 30;
   std::array<double, 5> sum{}, sum_sq{}, reported{};
   for (int d = 0; d < kDraws; ++d) {
-    const OdometryFit f = fit_odometry_noise(draw_increments(truth, 300, 100 + d));
+    const OdometryFit f =
+        fit_odometry_noise(draw_increments(truth, 300, 100U + static_cast<unsigned>(d)));
     const std::array<double, 5> v{f.alphas.alpha1, f.alphas.alpha2, f.alphas.alpha3,
                                   f.alphas.alpha4, f.rotation_bias};
     const std::array<double, 5> se{f.alphas_se.alpha1, f.alphas_se.alpha2, f.alphas_se.alpha3,

@@ -80,10 +80,11 @@ TEST(OdometryFitBetweenEstimatedPoses, MatchesTheFitBetweenExactPoses) {
   constexpr int kDraws = 8;
   Figures exact{}, estimated{};
   for (int d = 0; d < kDraws; ++d) {
-    const std::vector<MotionSample> samples = draw_increments(truth, 1500, 200 + d);
+    const std::vector<MotionSample> samples =
+        draw_increments(truth, 1500, 200U + static_cast<unsigned>(d));
     const Figures e = figures(fit_odometry_noise(samples, false));
-    const Figures n =
-        figures(fit_odometry_noise(between_noisy_poses(samples, 0.015, 0.003, 300 + d), true));
+    const Figures n = figures(fit_odometry_noise(
+        between_noisy_poses(samples, 0.015, 0.003, 300U + static_cast<unsigned>(d)), true));
     for (std::size_t i = 0; i < e.size(); ++i) {
       exact[i] += e[i] / kDraws;
       estimated[i] += n[i] / kDraws;

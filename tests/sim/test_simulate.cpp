@@ -27,9 +27,9 @@ struct SimulatedRun {
 
   static const SimulatedRun& default_run() {
     static const SimulatedRun run = [] {
-      OccupancyGrid map = load_map(bundled_map_path());
-      Simulation sim = simulate(map, SimulationConfig{});
-      return SimulatedRun{std::move(map), std::move(sim)};
+      OccupancyGrid grid = load_map(bundled_map_path());
+      Simulation drive = simulate(grid, SimulationConfig{});
+      return SimulatedRun{std::move(grid), std::move(drive)};
     }();
     return run;
   }
