@@ -97,15 +97,15 @@ const Setting kSettings[] = {
 // the summed step).
 CalibrationOptions simulated(const Setting& s, const std::filesystem::path& dir,
                              double seconds = 600) {
-  sim::SimulationConfig sim;
-  sim.seconds = seconds;
-  sim.scan_rate = 1.5;
-  sim.seed = s.seed;
-  sim.odometry_alphas = s.odometry;
-  sim.range_mixture = s.ranges;
+  sim::SimulationConfig drive;
+  drive.seconds = seconds;
+  drive.scan_rate = 1.5;
+  drive.seed = s.seed;
+  drive.odometry_alphas = s.odometry;
+  drive.range_mixture = s.ranges;
   const std::filesystem::path map = sim::bundled_map_path();
   const sim::SimulationFiles files =
-      sim::write_simulation(sim::simulate(load_map(map), sim), dir, sim);
+      sim::write_simulation(sim::simulate(load_map(map), drive), dir, drive);
   CalibrationOptions o;
   o.map = map;
   o.log = files.log;
@@ -243,25 +243,25 @@ std::string error_of(const CalibrationOptions& o) {
 }
 
 TEST(CalibrateBadInput, ShortLogNoOdometryAndNoConvergence) {
-  sim::SimulationConfig sim;
-  sim.seconds = 10;
+  sim::SimulationConfig drive;
+  drive.seconds = 10;
   const std::filesystem::path map = sim::bundled_map_path();
   const OccupancyGrid grid = load_map(map);
   const std::filesystem::path dir = test::temp_dir();
   CalibrationOptions o;
   o.map = map;
-  o.log = sim::write_simulation(sim::simulate(grid, sim), dir / "short").log;
+  o.log = sim::write_simulation(sim::simulate(grid, drive), dir / "short").log;
   EXPECT_NE(error_of(o).find("log too short"), std::string::npos) << error_of(o);
 
-  sim.seconds = 120;
-  sim::Simulation still = sim::simulate(grid, sim);
+  drive.seconds = 120;
+  sim::Simulation still = sim::simulate(grid, drive);
   for (logs::ScanFrame& f : still.frames) f.odometry = still.frames.front().odometry;
   o.log = dir / "still.clf";
   logs::write_carmen_log(o.log, still.frames);
   EXPECT_NE(error_of(o).find("no odometry"), std::string::npos) << error_of(o);
 
   // Every reading a no-return: no scan ever places the robot.
-  sim::Simulation blind = sim::simulate(grid, sim);
+  sim::Simulation blind = sim::simulate(grid, drive);
   for (logs::ScanFrame& f : blind.frames) {
     for (float& z : f.scan.ranges) z = f.scan.range_max;
   }

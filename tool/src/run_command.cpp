@@ -60,9 +60,10 @@ int run_command(std::span<char* const> words) {
   sim_config.seed = static_cast<std::uint64_t>(args.integer("seed", 0, INT64_MAX).value_or(1));
   std::cout << "mote run: simulating " << sim_config.seconds << " s on "
             << sim::bundled_map_path().string() << '\n';
-  const sim::Simulation sim = sim::simulate(load_map(sim::bundled_map_path()), sim_config);
-  const sim::SimulationFiles files = sim::write_simulation(sim, out);
-  std::cout << "mote run: replaying " << sim.frames.size() << " scans with global initialization\n";
+  const sim::Simulation drive = sim::simulate(load_map(sim::bundled_map_path()), sim_config);
+  const sim::SimulationFiles files = sim::write_simulation(drive, out);
+  std::cout << "mote run: replaying " << drive.frames.size()
+            << " scans with global initialization\n";
   const replay::ReplayResult result =
       replay_and_report(run_options(args, files, sim_config.seed), out);
   replay::print_summary(std::cout, result);

@@ -120,10 +120,10 @@ int simulate_command(std::span<char* const> words) {
   const std::filesystem::path map_path = args.required("map");
   const std::filesystem::path out = args.required("out");
   const sim::SimulationConfig config = simulation_config(args);
-  const sim::Simulation sim = sim::simulate(load_map(map_path), config);
-  const sim::SimulationFiles files = sim::write_simulation(sim, out, config);
-  std::cout << "simulated " << sim.frames.size() << " scans (" << config.seconds << " s, "
-            << sim.goals_reached << " goals reached)\n  log          " << files.log.string()
+  const sim::Simulation drive = sim::simulate(load_map(map_path), config);
+  const sim::SimulationFiles files = sim::write_simulation(drive, out, config);
+  std::cout << "simulated " << drive.frames.size() << " scans (" << config.seconds << " s, "
+            << drive.goals_reached << " goals reached)\n  log          " << files.log.string()
             << "\n  ground truth " << files.ground_truth.string() << '\n';
   if (!files.noise.empty()) std::cout << "  noise        " << files.noise.string() << '\n';
   return 0;
