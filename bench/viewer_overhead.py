@@ -8,7 +8,7 @@ report.json's wall_s (the replay loop, which holds the recording but not the wri
 viewer.html). With --baseline MOTE, a build without
 the viewer runs in the same rotation, for "nothing when --viewer is off".
 
-  bench/viewer_overhead.py --mote build/replay/mote [--baseline OTHER/mote] [--runs 9]
+  bench/viewer_overhead.py --mote build/tool/mote [--baseline OTHER/mote] [--runs 9]
                            [-- extra replay flags, e.g. --particles 5000]
 """
 import argparse

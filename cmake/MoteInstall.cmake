@@ -1,5 +1,6 @@
 # Installs the exported targets and moteConfig.cmake (+ version file), so that an outside project
-# writes find_package(mote REQUIRED) and target_link_libraries(app PRIVATE mote::mote).
+# writes find_package(mote REQUIRED) and target_link_libraries(app PRIVATE mote::mote), or links
+# one layer (mote::logs, mote::engine, ...; docs/architecture.md).
 include(CMakePackageConfigHelpers)
 set(MOTE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/mote)
 

@@ -100,13 +100,22 @@ function(mote_add_library name)
 endfunction()
 
 # mote_add_test(<name> SOURCES ... [LIBS ...]): a GoogleTest executable registered with ctest.
+# Its tests that match MOTE_LONG_TESTS (a GoogleTest filter; tests/long_tests.txt) carry the
+# ctest label `long`.
 function(mote_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} mote_test_support GTest::gtest_main)
   mote_target_options(${name})
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
-                       PROPERTIES ENVIRONMENT "MOTE_DATA_DIR=${MOTE_DATA_DIR}")
+  set(environment "MOTE_DATA_DIR=${MOTE_DATA_DIR}")
+  if(NOT MOTE_LONG_TESTS)
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ENVIRONMENT "${environment}")
+    return()
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 TEST_FILTER "-${MOTE_LONG_TESTS}"
+                       PROPERTIES ENVIRONMENT "${environment}")
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 TEST_FILTER "${MOTE_LONG_TESTS}"
+                       PROPERTIES ENVIRONMENT "${environment}" LABELS long)
 endfunction()
 
 # mote_add_bench(<name> SOURCES ... [LIBS ...]): a Google Benchmark executable.

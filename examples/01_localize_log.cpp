@@ -5,8 +5,8 @@
 #include <exception>
 
 #include "mote/engine/localizer.hpp"
+#include "mote/logs/scan_source.hpp"
 #include "mote/maps/map_loader.hpp"
-#include "mote/replay/scan_source.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
     mote::Localizer localizer(map, config);
     localizer.initialize_global();
 
-    auto log = mote::replay::open_scan_log(argv[2]);
+    auto log = mote::logs::open_scan_log(argv[2]);
     int updates = 0;
     while (auto frame = log->next()) {
       if (!localizer.update(frame->odometry, frame->scan)) continue;

@@ -5,7 +5,7 @@
 
 #include "mote/core/error.hpp"
 #include "mote/maps/map_loader.hpp"
-#include "mote/replay/simulate.hpp"
+#include "mote/sim/simulate.hpp"
 #include "mote_bench/data.hpp"
 
 namespace mote::bench {
@@ -14,8 +14,8 @@ namespace {
 
 // A SICK LMS-like laser that sees every wall: no dropouts and a range beyond the map, so every
 // beam of a scan is a valid return and a case's beam count is the count the models use.
-replay::SimulationConfig drive_config(int beams) {
-  replay::SimulationConfig config;
+sim::SimulationConfig drive_config(int beams) {
+  sim::SimulationConfig config;
   config.seconds = 60.0;
   config.seed = 7;
   config.beams = beams;
@@ -34,7 +34,7 @@ World map_world() {
   const std::filesystem::path intel = data_dir() / "intel/intel.yaml";
   if (std::filesystem::exists(intel)) return empty_world("intel", load_map(intel));
   return empty_world("floorplan (bundled; Intel not found in " + data_dir().string() + ")",
-                     load_map(replay::bundled_map_path()));
+                     load_map(sim::bundled_map_path()));
 }
 
 bool same(const Pose2& a, const Pose2& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; }
@@ -43,20 +43,20 @@ bool same(const Pose2& a, const Pose2& b) { return a.x == b.x && a.y == b.y && a
 // purpose, so runs that differ only in beam count drive the same poses; checked here because
 // the benchmark pairs each beam count's scans with one trajectory.
 void add_scans(World& w, int beams) {
-  const replay::Simulation sim = replay::simulate(w.map, drive_config(beams));
+  const sim::Simulation drive = sim::simulate(w.map, drive_config(beams));
   const bool first = w.truth.empty();
   std::vector<LaserScan>& scans = w.scans[beams];
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < sim.frames.size(); ++i) {
+  for (std::size_t i = 0; i < drive.frames.size(); ++i) {
     // A frame without odometry motion would not update the filter (kNotMoved): skip it.
-    if (i > 0 && same(sim.frames[i - 1].odometry, sim.frames[i].odometry)) continue;
+    if (i > 0 && same(drive.frames[i - 1].odometry, drive.frames[i].odometry)) continue;
     if (first) {
-      w.truth.push_back(sim.truth[i].pose);
-      w.odometry.push_back(sim.frames[i].odometry);
-    } else if (kept >= w.truth.size() || !same(w.truth[kept], sim.truth[i].pose)) {
+      w.truth.push_back(drive.truth[i].pose);
+      w.odometry.push_back(drive.frames[i].odometry);
+    } else if (kept >= w.truth.size() || !same(w.truth[kept], drive.truth[i].pose)) {
       throw Error("bench_e2e: the simulated drive differs between beam counts");
     }
-    scans.push_back(sim.frames[i].scan);
+    scans.push_back(drive.frames[i].scan);
     ++kept;
   }
 }

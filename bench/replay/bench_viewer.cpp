@@ -40,7 +40,7 @@ void BM_Viewer_ReplayIntel(benchmark::State& state, bool record) {
   for (auto _ : state) {
     mote::replay::ViewerRecorder recorder(map);
     if (record) {
-      options.on_update = [&](const mote::Localizer& filter, const mote::replay::ScanFrame& f) {
+      options.on_update = [&](const mote::Localizer& filter, const mote::logs::ScanFrame& f) {
         const auto start = Clock::now();
         recorder.record(filter, f);
         record_s += std::chrono::duration<double>(Clock::now() - start).count();

@@ -15,9 +15,9 @@
 #include "bindings.hpp"
 #include "mote/core/error.hpp"
 #include "mote/engine/localizer_config.hpp"
+#include "mote/logs/scan_source.hpp"
 #include "mote/replay/replay_run.hpp"
 #include "mote/replay/report.hpp"
-#include "mote/replay/scan_source.hpp"
 
 namespace mote::python {
 namespace {
@@ -25,11 +25,11 @@ namespace {
 /// A log being read; next() runs without the GIL.
 class LogReader {
  public:
-  explicit LogReader(std::unique_ptr<replay::ScanSource> source) : source_(std::move(source)) {}
+  explicit LogReader(std::unique_ptr<logs::ScanSource> source) : source_(std::move(source)) {}
 
   py::tuple next() {
     if (busy_.exchange(true)) throw Error("LogReader: already in use by another thread");
-    std::optional<replay::ScanFrame> frame;
+    std::optional<logs::ScanFrame> frame;
     try {
       const py::gil_scoped_release unlocked;
       frame = source_->next();
@@ -42,7 +42,7 @@ class LogReader {
     return py::make_tuple(frame->stamp, frame->odometry, std::move(frame->scan));
   }
   [[nodiscard]] py::dict stats() const {
-    const replay::ReadStats s = source_->stats();
+    const logs::ReadStats s = source_->stats();
     py::dict d;
     d["records_read"] = s.records_read;
     d["records_ignored"] = s.records_ignored;
@@ -55,14 +55,14 @@ class LogReader {
   [[nodiscard]] std::string range_max_source() const { return source_->range_max_source(); }
 
  private:
-  std::unique_ptr<replay::ScanSource> source_;
+  std::unique_ptr<logs::ScanSource> source_;
   std::atomic<bool> busy_{false};  ///< next() runs without the GIL: one thread at a time
 };
 
-replay::ReaderOptions reader_options(bool lenient, std::optional<float> laser_max_range,
-                                     const std::string& scan_topic, const std::string& odom_topic,
-                                     const std::string& odom_frame, const std::string& base_frame) {
-  replay::ReaderOptions o;
+logs::ReaderOptions reader_options(bool lenient, std::optional<float> laser_max_range,
+                                   const std::string& scan_topic, const std::string& odom_topic,
+                                   const std::string& odom_frame, const std::string& base_frame) {
+  logs::ReaderOptions o;
   o.lenient = lenient;
   o.carmen_max_range = laser_max_range;
   o.scan_topic = scan_topic;
@@ -73,7 +73,7 @@ replay::ReaderOptions reader_options(bool lenient, std::optional<float> laser_ma
 }
 
 /// (stamp, x, y, theta) rows: the best-cluster mean after every update that ran.
-py::array_t<double> trajectory_array(const std::vector<replay::StampedPose>& poses) {
+py::array_t<double> trajectory_array(const std::vector<logs::StampedPose>& poses) {
   py::array_t<double> a({static_cast<py::ssize_t>(poses.size()), py::ssize_t{4}});
   auto rows = a.mutable_unchecked<2>();
   for (std::size_t k = 0; k < poses.size(); ++k) {
@@ -117,7 +117,7 @@ py::dict replay_to_dict(const std::filesystem::path& map, const std::filesystem:
     o.init_pose = *init_pose;
   }
   std::string json;
-  std::vector<replay::StampedPose> trajectory;
+  std::vector<logs::StampedPose> trajectory;
   {
     const py::gil_scoped_release unlocked;
     const replay::ReplayResult result = replay::run_replay(o);
@@ -145,10 +145,10 @@ void bind_replay(py::module_& m) {
       [](const std::filesystem::path& path, bool lenient, std::optional<float> laser_max_range,
          const std::string& scan_topic, const std::string& odom_topic,
          const std::string& odom_frame, const std::string& base_frame) {
-        const replay::ReaderOptions o = reader_options(lenient, laser_max_range, scan_topic,
-                                                       odom_topic, odom_frame, base_frame);
+        const logs::ReaderOptions o = reader_options(lenient, laser_max_range, scan_topic,
+                                                     odom_topic, odom_frame, base_frame);
         const py::gil_scoped_release unlocked;
-        return std::make_unique<LogReader>(replay::open_scan_log(path, o));
+        return std::make_unique<LogReader>(logs::open_scan_log(path, o));
       },
       py::arg("path"), py::kw_only(), py::arg("lenient") = false,
       py::arg("laser_max_range") = py::none(), py::arg("scan_topic") = "",

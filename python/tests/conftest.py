@@ -10,7 +10,7 @@ import pytest
 import mote
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-FLOORPLAN = ROOT / "replay" / "data" / "floorplan.yaml"
+FLOORPLAN = ROOT / "sim" / "data" / "floorplan.yaml"
 DATA_DIR = pathlib.Path(os.environ.get("MOTE_DATA_DIR", ROOT.parent / "shared" / "data"))
 INTEL = DATA_DIR / "intel"
 

@@ -1,14 +1,9 @@
-// map.png: grid cells to pixels, polylines and particle dots, PNG output via libpng's simplified
-// write API (png_image_write_to_file, libpng 1.6).
+// map.png: grid cells to pixels, polylines and particle dots (written by maps' write_png).
 #include "mote/replay/map_image.hpp"
-
-#include <png.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include "mote/core/error.hpp"
 
 namespace mote::replay {
 namespace {
@@ -47,7 +42,7 @@ Point2 to_cells(const OccupancyGrid& map, const Pose2& p) {
 View choose_view(const OccupancyGrid& map, const MapOverlay& overlay, const MapRenderOptions& o) {
   CellBox box;
   for (const auto* path : {&overlay.reference, &overlay.estimate}) {
-    for (const StampedPose& s : *path) {
+    for (const logs::StampedPose& s : *path) {
       const Point2 c = to_cells(map, s.pose);
       if (std::isfinite(c.x) && std::isfinite(c.y)) box.add(c.x, c.y);
     }
@@ -114,7 +109,7 @@ void segment(RgbImage& img, Point2 a, Point2 b, int width, Color c) {
 }
 
 void polyline(RgbImage& img, const OccupancyGrid& map, const View& v,
-              std::span<const StampedPose> path, Color c) {
+              std::span<const logs::StampedPose> path, Color c) {
   const int width = std::max(2, v.scale / 2);
   for (std::size_t k = 1; k < path.size(); ++k) {
     const Point2 a = to_pixel(map, v, path[k - 1].pose);
@@ -142,17 +137,6 @@ RgbImage render_map(const OccupancyGrid& map, const MapOverlay& overlay,
   polyline(img, map, v, overlay.reference, kReference);
   polyline(img, map, v, overlay.estimate, kEstimate);
   return img;
-}
-
-void write_png(const std::filesystem::path& path, const RgbImage& image) {
-  png_image png{};
-  png.version = PNG_IMAGE_VERSION;
-  png.width = static_cast<png_uint_32>(image.width);
-  png.height = static_cast<png_uint_32>(image.height);
-  png.format = PNG_FORMAT_RGB;
-  const int ok =
-      png_image_write_to_file(&png, path.c_str(), 0, image.rgb.data(), image.width * 3, nullptr);
-  if (ok == 0) throw Error(path.string() + ": cannot write PNG: " + png.message);
 }
 
 void write_map_png(const std::filesystem::path& path, const OccupancyGrid& map,

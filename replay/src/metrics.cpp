@@ -28,12 +28,12 @@ double nearest_rank(const std::vector<double>& sorted, double p) {
   return sorted[std::min(rank, sorted.size()) - 1];
 }
 
-std::vector<PoseError> pose_errors(std::span<const StampedPose> estimate,
-                                   std::span<const StampedPose> reference, double tolerance) {
+std::vector<PoseError> pose_errors(std::span<const logs::StampedPose> estimate,
+                                   std::span<const logs::StampedPose> reference, double tolerance) {
   std::vector<PoseError> errors;
   errors.reserve(estimate.size());
-  for (const StampedPose& e : estimate) {
-    const auto ref = match_reference(reference, e.stamp, tolerance);
+  for (const logs::StampedPose& e : estimate) {
+    const auto ref = logs::match_reference(reference, e.stamp, tolerance);
     if (!ref) continue;
     const double dx = e.pose.x - ref->pose.x;
     const double dy = e.pose.y - ref->pose.y;
@@ -90,35 +90,10 @@ TrajectoryErrors::AfterConvergence rms_of(std::span<const PoseError> errors) {
 
 }  // namespace
 
-std::vector<StampedPose> sort_by_stamp(std::span<const StampedPose> poses) {
-  std::vector<StampedPose> sorted(poses.begin(), poses.end());
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
-  return sorted;
-}
-
-std::optional<StampedPose> match_reference(std::span<const StampedPose> reference, double stamp,
-                                           double tolerance) {
-  const auto later = std::lower_bound(reference.begin(), reference.end(), stamp,
-                                      [](const StampedPose& p, double t) { return p.stamp < t; });
-  std::optional<StampedPose> best;
-  double best_gap = std::numeric_limits<double>::infinity();
-  const auto consider = [&](auto it) {
-    const double gap = std::abs(it->stamp - stamp);
-    if (gap <= tolerance && gap < best_gap) {
-      best = *it;
-      best_gap = gap;
-    }
-  };
-  if (later != reference.end()) consider(later);
-  if (later != reference.begin()) consider(std::prev(later));
-  return best;
-}
-
-TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
-                                      std::span<const StampedPose> reference,
+TrajectoryErrors compare_trajectories(std::span<const logs::StampedPose> estimate,
+                                      std::span<const logs::StampedPose> reference,
                                       const MetricOptions& options) {
-  const std::vector<StampedPose> sorted = sort_by_stamp(reference);
+  const std::vector<logs::StampedPose> sorted = logs::sort_by_stamp(reference);
   const std::vector<PoseError> errors = pose_errors(estimate, sorted, options.match_tolerance_s);
   TrajectoryErrors out;
   out.matched = errors.size();
@@ -139,17 +114,17 @@ TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
   return out;
 }
 
-std::optional<std::size_t> recovery_updates(std::span<const StampedPose> estimate,
-                                            std::span<const StampedPose> sorted_reference,
+std::optional<std::size_t> recovery_updates(std::span<const logs::StampedPose> estimate,
+                                            std::span<const logs::StampedPose> sorted_reference,
                                             double kidnap_stamp, double within_m, std::size_t hold,
                                             double tolerance) {
   std::size_t after = 0;      // estimates at or after the kidnapping so far
   std::size_t run_start = 0;  // index (among those) of the current run's first estimate
   std::size_t run = 0;        // matched estimates within the bound in the current run
-  for (const StampedPose& e : estimate) {
+  for (const logs::StampedPose& e : estimate) {
     if (e.stamp < kidnap_stamp) continue;
     const std::size_t index = after++;
-    const auto ref = match_reference(sorted_reference, e.stamp, tolerance);
+    const auto ref = logs::match_reference(sorted_reference, e.stamp, tolerance);
     if (!ref) continue;
     if (std::hypot(e.pose.x - ref->pose.x, e.pose.y - ref->pose.y) > within_m) {
       run = 0;

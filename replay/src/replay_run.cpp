@@ -22,7 +22,7 @@ Eigen::Matrix3d initial_covariance(const ReplayOptions& options) {
 // kAuto starts at the reference pose of the first scan (nearest stamp, else the first reference
 // pose), so tracking runs can be scored from their first update; without a reference it is global.
 void initialize(Localizer& filter, const ReplayOptions& options,
-                const std::vector<StampedPose>& sorted_reference, double first_stamp) {
+                const std::vector<logs::StampedPose>& sorted_reference, double first_stamp) {
   if (options.init == InitMode::kPose) {
     filter.initialize(options.init_pose, initial_covariance(options));
     return;
@@ -32,7 +32,7 @@ void initialize(Localizer& filter, const ReplayOptions& options,
     return;
   }
   const auto match =
-      match_reference(sorted_reference, first_stamp, options.metrics.match_tolerance_s);
+      logs::match_reference(sorted_reference, first_stamp, options.metrics.match_tolerance_s);
   const Pose2 start = match ? match->pose : sorted_reference.front().pose;
   filter.initialize(start, initial_covariance(options));
 }
@@ -77,12 +77,13 @@ std::vector<Pose2> particle_poses(const Localizer& filter) {
 }
 
 // Runs every frame of the log through the filter (initialized on the first frame).
-void run_frames(ReplayResult& result, Localizer& filter, ScanSource& source,
-                const ReplayOptions& options, const std::vector<StampedPose>& sorted_reference) {
+void run_frames(ReplayResult& result, Localizer& filter, logs::ScanSource& source,
+                const ReplayOptions& options,
+                const std::vector<logs::StampedPose>& sorted_reference) {
   while (true) {
     // The reader's share of the loop (reading, decompressing, decoding, tf): report.json read_s.
     const auto read_start = Clock::now();
-    std::optional<ScanFrame> frame = source.next();
+    std::optional<logs::ScanFrame> frame = source.next();
     result.read_s += std::chrono::duration<double>(Clock::now() - read_start).count();
     if (!frame) break;
     if (result.scans == 0) {
@@ -102,12 +103,12 @@ void run_frames(ReplayResult& result, Localizer& filter, ScanSource& source,
 }
 
 KidnapRecovery kidnap_recovery(const ReplayResult& result, const ReplayOptions& options,
-                               const std::vector<StampedPose>& sorted_reference) {
+                               const std::vector<logs::StampedPose>& sorted_reference) {
   KidnapRecovery k;
   k.at = *options.kidnapped_at;
   k.within_m = options.recovered_within_m;
   k.hold = options.recovered_hold;
-  for (const StampedPose& e : result.trajectory) k.updates_after += e.stamp >= k.at ? 1U : 0U;
+  for (const logs::StampedPose& e : result.trajectory) k.updates_after += e.stamp >= k.at ? 1U : 0U;
   k.recovered_after = recovery_updates(result.trajectory, sorted_reference, k.at, k.within_m,
                                        k.hold, options.metrics.match_tolerance_s);
   return k;
@@ -117,9 +118,9 @@ KidnapRecovery kidnap_recovery(const ReplayResult& result, const ReplayOptions& 
 
 ReplayResult run_replay(const ReplayOptions& options) {
   ReplayResult result{load_map(options.map), options.config};
-  if (!options.reference.empty()) result.reference = read_tum(options.reference);
-  const std::vector<StampedPose> sorted_reference = sort_by_stamp(result.reference);
-  auto source = open_scan_log(options.log, options.reader);
+  if (!options.reference.empty()) result.reference = logs::read_tum(options.reference);
+  const std::vector<logs::StampedPose> sorted_reference = logs::sort_by_stamp(result.reference);
+  auto source = logs::open_scan_log(options.log, options.reader);
   Localizer filter(result.map, options.config);
   result.threads = filter.threads();
   result.global_set = filter.global_set();

@@ -374,7 +374,7 @@ void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& 
     write_folded_stacks(folded, profile_run(result));
     if (!folded.good()) throw Error((dir / "profile.folded").string() + ": cannot write");
   }
-  write_tum(dir / "trajectory.tum", result.trajectory);
+  logs::write_tum(dir / "trajectory.tum", result.trajectory);
   write_updates_csv(dir / "updates.csv", result);
   MapOverlay overlay{result.reference, result.trajectory, result.final_particles};
   write_map_png(dir / "map.png", result.map, overlay);

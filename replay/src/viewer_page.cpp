@@ -1,10 +1,12 @@
 // viewer.html: the page template (viewer_page_head.cpp, viewer_script.cpp) with the run embedded
 // as one JSON object; the bulky columns (map cells, particles, endpoints) as base64 of arrays.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <ostream>
 #include <span>
 #include <string>
@@ -97,18 +99,84 @@ void write_string(std::ostream& out, std::string_view text) {
   out << '"';
 }
 
-void write_map(std::ostream& out, const OccupancyGrid& map) {
-  std::vector<std::uint8_t> cells(map.cell_count());
-  for (std::size_t k = 0; k < cells.size(); ++k)
-    cells[k] = static_cast<std::uint8_t>(map.cells()[k]);
-  out << "\"map\":{\"width\":" << map.width() << ",\"height\":" << map.height()
-      << ",\"resolution\":" << map.resolution() << ",\"cells\":";
-  write_base64(out, cells);  // row 0 is the bottom (grid frame), CellState values
+// Grid cells [u0, u1) x [v0, v1): the part of the map the page carries.
+struct CellBox {
+  int u0 = 0, v0 = 0, u1 = 0, v1 = 0;
+};
+
+// Grows a box of grid-frame cell coordinates point by point; non-finite points are left out.
+class BoxGrower {
+ public:
+  void add(double u, double v) {
+    if (!std::isfinite(u) || !std::isfinite(v)) return;
+    lo_u_ = std::min(lo_u_, u);
+    hi_u_ = std::max(hi_u_, u);
+    lo_v_ = std::min(lo_v_, v);
+    hi_v_ = std::max(hi_v_, v);
+  }
+  void add_fixed(std::span<const std::uint16_t> uv, std::size_t stride, double per_cell) {
+    for (std::size_t k = 0; k + 1 < uv.size(); k += stride)
+      add(uv[k] / per_cell, uv[k + 1] / per_cell);
+  }
+  // The box grown by `margin` cells, clamped to the map; the whole map when nothing was added
+  // inside it.
+  [[nodiscard]] CellBox cells(const OccupancyGrid& map, int margin) const {
+    const CellBox whole{0, 0, map.width(), map.height()};
+    if (!(lo_u_ <= hi_u_)) return whole;
+    const auto clamp = [](double x, int hi) {
+      return static_cast<int>(std::clamp(x, 0.0, static_cast<double>(hi)));
+    };
+    const CellBox b{clamp(std::floor(lo_u_) - margin, map.width()),
+                    clamp(std::floor(lo_v_) - margin, map.height()),
+                    clamp(std::ceil(hi_u_) + margin, map.width()),
+                    clamp(std::ceil(hi_v_) + margin, map.height())};
+    return b.u0 < b.u1 && b.v0 < b.v1 ? b : whole;
+  }
+
+ private:
+  double lo_u_ = std::numeric_limits<double>::infinity(), lo_v_ = lo_u_;
+  double hi_u_ = -lo_u_, hi_v_ = -lo_u_;
+};
+
+// The area the run visits: everything the page draws (estimate, reference, particles, scan
+// endpoints, cluster means) with kViewerMarginM around it, at least the page's own 10-cell
+// margin. A log covers a small part of a large map, whose every cell the page would otherwise
+// carry (a 4000 x 4000 grid is 21 MB of base64).
+CellBox visited_cells(const ReplayResult& result, const ViewerRecording& recording) {
+  const FixedPointGrid grid(result.map);
+  BoxGrower box;
+  for (const auto* poses : {&result.trajectory, &result.reference}) {
+    for (const logs::StampedPose& p : *poses) {
+      const Point2 c = grid.cells({p.pose.x, p.pose.y});
+      box.add(c.x, c.y);
+    }
+  }
+  box.add_fixed(recording.particles, 3, grid.per_cell());
+  box.add_fixed(recording.endpoints, 2, grid.per_cell());
+  box.add_fixed(recording.heavy_clusters, 3, grid.per_cell());
+  const int margin =
+      std::max(10, static_cast<int>(std::ceil(kViewerMarginM / result.map.resolution())));
+  return box.cells(result.map, margin);
+}
+
+// The cells of `box`, row 0 its bottom row (grid frame), as CellState values; u0 and v0 place
+// it in the map, in whose cells every position on the page is given.
+void write_map(std::ostream& out, const OccupancyGrid& map, const CellBox& box) {
+  const int width = box.u1 - box.u0, height = box.v1 - box.v0;
+  std::vector<std::uint8_t> cells;
+  cells.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  for (int v = box.v0; v < box.v1; ++v) {
+    for (int u = box.u0; u < box.u1; ++u)
+      cells.push_back(static_cast<std::uint8_t>(map.at({u, v})));
+  }
+  out << "\"map\":{\"width\":" << width << ",\"height\":" << height << ",\"u0\":" << box.u0
+      << ",\"v0\":" << box.v0 << ",\"resolution\":" << map.resolution() << ",\"cells\":";
+  write_base64(out, cells);
   out << '}';
 }
 
 // Poses as u, v in grid cells and the heading in the grid frame; stamps in s after t0.
-void write_poses(std::ostream& out, std::string_view key, std::span<const StampedPose> poses,
+void write_poses(std::ostream& out, std::string_view key, std::span<const logs::StampedPose> poses,
                  const OccupancyGrid& map, double t0) {
   const FixedPointGrid grid(map);
   out << ",\"" << key << "\":[";
@@ -130,13 +198,13 @@ void write_poses(std::ostream& out, std::string_view key, std::span<const Stampe
 
 // Position error of each update against the reference pose matched to its stamp (NaN: none).
 std::vector<double> position_errors(const ReplayResult& result) {
-  const std::vector<StampedPose> reference = sort_by_stamp(result.reference);
+  const std::vector<logs::StampedPose> reference = logs::sort_by_stamp(result.reference);
   std::vector<double> errors(result.trajectory.size(), std::nan(""));
   if (reference.empty()) return errors;
   const double tolerance = MetricOptions{}.match_tolerance_s;
   for (std::size_t k = 0; k < errors.size(); ++k) {
-    const StampedPose& e = result.trajectory[k];
-    if (const auto match = match_reference(reference, e.stamp, tolerance))
+    const logs::StampedPose& e = result.trajectory[k];
+    if (const auto match = logs::match_reference(reference, e.stamp, tolerance))
       errors[k] = std::hypot(e.pose.x - match->pose.x, e.pose.y - match->pose.y);
   }
   return errors;
@@ -179,13 +247,14 @@ void write_viewer_page(std::ostream& out, const ReplayResult& result,
   const FixedPointGrid grid(result.map);
   out << kViewerPageHead << "<script id=\"mote-data\" type=\"application/json\">{";
   out.precision(6);
-  write_map(out, result.map);
+  write_map(out, result.map, visited_cells(result, recording));
   out << ",\"per_cell\":" << grid.per_cell() << ",\"threads\":" << result.threads << ",\"model\":";
   write_string(out, model_name(result.config.laser_model_type));
   out << ",\"t0\":";
   write_string(out, std::to_string(result.first_stamp));
   write_poses(out, "estimate", result.trajectory, result.map, result.first_stamp);
-  write_poses(out, "reference", sort_by_stamp(result.reference), result.map, result.first_stamp);
+  write_poses(out, "reference", logs::sort_by_stamp(result.reference), result.map,
+              result.first_stamp);
   write_statistics(out, result);
   write_array(out, "clusters", recording.clusters.size(),
               [&](std::size_t k) { return static_cast<double>(recording.clusters[k]); });

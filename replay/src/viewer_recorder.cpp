@@ -27,7 +27,7 @@ FixedPointGrid::FixedPointGrid(const OccupancyGrid& map)
       cos_scaled_(cos_yaw_ * per_cell_ / resolution_),
       sin_scaled_(sin_yaw_ * per_cell_ / resolution_) {}
 
-void ViewerRecorder::record(const Localizer& filter, const ScanFrame& frame) {
+void ViewerRecorder::record(const Localizer& filter, const logs::ScanFrame& frame) {
   record_particles(filter.particles());
   const LocalizationEstimate& estimate = filter.estimate();
   record_endpoints(estimate.best().mean, frame.scan);

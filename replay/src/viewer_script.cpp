@@ -42,7 +42,6 @@ const std::string_view kViewerScript = R"js("use strict";
     const d = JSON.parse(document.getElementById("mote-data").textContent);
     const n = d.total_ms.length;
     if (n === 0) throw new Error("the run has no updates");
-    const W = d.map.width, H = d.map.height;
     const box = viewBox(d);  // cells shown: the known part of the map and the trajectories
     const scale = Math.min(8, 860 / Math.max(box.u1 - box.u0, box.v1 - box.v0));
     const particleEnd = decode(d.particle_end, 4, Uint32Array);
@@ -149,8 +148,9 @@ const std::string_view kViewerScript = R"js("use strict";
       current = Math.max(0, Math.min(n - 1, Math.floor(k)));
       slider.value = String(current);
       ctx.imageSmoothingEnabled = false;
-      ctx.drawImage(mapImage, box.u0, H - box.v1, box.u1 - box.u0, box.v1 - box.v0, 0, 0,
-                    canvas.width, canvas.height);
+      // mapImage holds the embedded cells, from (u0, v0) of the map; its row 0 is their top.
+      ctx.drawImage(mapImage, box.u0 - d.map.u0, d.map.v0 + d.map.height - box.v1,
+                    box.u1 - box.u0, box.v1 - box.v0, 0, 0, canvas.width, canvas.height);
       polyline(d.reference, referenceCount(d.estimate_t[current]), "#00aa00", 2);
       drawParticles(current);
       drawEndpoints(current);
@@ -187,10 +187,12 @@ const std::string_view kViewerScript = R"js("use strict";
     show(fromHash());
   }
 
-  // The cells to show: the known (free or occupied) part of the map, without the 0.5% of known
-  // cells furthest out on each side (stray returns), and the trajectories, with a margin.
+  // The cells to show: the known (free or occupied) part of the embedded map, without the 0.5%
+  // of known cells furthest out on each side (stray returns), and the trajectories, with a
+  // margin; in cells of the whole map, within the embedded part.
   function viewBox(d) {
-    const W = d.map.width, H = d.map.height, cells = atob(d.map.cells);
+    const W = d.map.width, H = d.map.height, U0 = d.map.u0, V0 = d.map.v0;
+    const cells = atob(d.map.cells);
     const byU = new Float64Array(W), byV = new Float64Array(H);
     let known = 0;
     for (let v = 0; v < H; ++v) {
@@ -201,14 +203,14 @@ const std::string_view kViewerScript = R"js("use strict";
         ++known;
       }
     }
-    if (known === 0) return { u0: 0, u1: W, v0: 0, v1: H };
-    const range = (counts) => {
+    if (known === 0) return { u0: U0, u1: U0 + W, v0: V0, v1: V0 + H };
+    const range = (counts, offset) => {
       let lo = 0, hi = counts.length - 1, sum = 0;
       while (sum + counts[lo] <= 0.005 * known) sum += counts[lo++];
       for (sum = 0; sum + counts[hi] <= 0.005 * known;) sum += counts[hi--];
-      return [lo, hi + 1];
+      return [offset + lo, offset + hi + 1];
     };
-    let [u0, u1] = range(byU), [v0, v1] = range(byV);
+    let [u0, u1] = range(byU, U0), [v0, v1] = range(byV, V0);
     for (const poses of [d.estimate, d.reference]) {
       for (let i = 0; i + 1 < poses.length; i += 3) {
         u0 = Math.min(u0, poses[i]); u1 = Math.max(u1, poses[i]);
@@ -216,8 +218,8 @@ const std::string_view kViewerScript = R"js("use strict";
       }
     }
     const m = 10;
-    return { u0: Math.max(0, Math.floor(u0) - m), u1: Math.min(W, Math.ceil(u1) + m),
-             v0: Math.max(0, Math.floor(v0) - m), v1: Math.min(H, Math.ceil(v1) + m) };
+    return { u0: Math.max(U0, Math.floor(u0) - m), u1: Math.min(U0 + W, Math.ceil(u1) + m),
+             v0: Math.max(V0, Math.floor(v0) - m), v1: Math.min(V0 + H, Math.ceil(v1) + m) };
   }
 
   // The grid, one pixel per cell (row 0 of the grid is the bottom, of the image the top).

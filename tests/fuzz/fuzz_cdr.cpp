@@ -1,4 +1,4 @@
-// libFuzzer target: the CDR decoders (replay/src/ros2_messages.hpp). The first byte picks the
+// libFuzzer target: the CDR decoders (logs/src/ros2_messages.hpp). The first byte picks the
 // message type, the rest is the serialized message; a decoder may only return or throw
 // BagDecodeError with an offset inside the message.
 #include <cstddef>
@@ -11,7 +11,7 @@
 
 namespace {
 
-namespace d = mote::replay::detail;
+namespace d = mote::logs::detail;
 
 void decode(std::uint8_t type, std::string_view bytes) {
   switch (type % 4U) {

@@ -1,4 +1,4 @@
-// Writes small ROS 1 bags as fuzzing seeds (tests/replay/bag_builder.hpp): every chunk
+// Writes small ROS 1 bags as fuzzing seeds (tests/logs/bag_builder.hpp): every chunk
 // compression, odometry from nav_msgs/Odometry and from tf. Usage: fuzz_seed_bags OUT_DIR.
 #include <cstdint>
 #include <filesystem>

@@ -1,4 +1,4 @@
-// Writes ROS 2 fuzzing seeds (tests/replay/ros2_builder.hpp): MCAP files in every layout and
+// Writes ROS 2 fuzzing seeds (tests/logs/ros2_builder.hpp): MCAP files in every layout and
 // chunk compression into OUT/mcap, CDR messages (first byte: the type fuzz_cdr decodes) into
 // OUT/cdr and metadata.yaml texts into OUT/rosbag2_metadata. Usage: fuzz_seed_ros2 OUT_DIR.
 #include <filesystem>

@@ -6,13 +6,13 @@
 #include <string>
 
 #include "fuzz_support.hpp"
-#include "mote/replay/tum.hpp"
+#include "mote/logs/tum.hpp"
 
 namespace {
 
 void read(const std::string& text) {
   std::istringstream in(text);
-  for (const mote::replay::StampedPose& p : mote::replay::read_tum(in, "fuzz.tum")) {
+  for (const mote::logs::StampedPose& p : mote::logs::read_tum(in, "fuzz.tum")) {
     if (!std::isfinite(p.stamp) || !std::isfinite(p.pose.x) || !std::isfinite(p.pose.y) ||
         !std::isfinite(p.pose.theta)) {
       mote::fuzz::finding("read_tum returned a non-finite pose");

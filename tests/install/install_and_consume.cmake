@@ -1,6 +1,8 @@
 # cmake -P script run by the install_and_consume test: installs mote, builds examples/consumer
 # against it with no -march or -m<isa> flag anywhere (design.md section 3, Portability), and runs
-# it with the dispatched kernels and again with MOTE_ISA=generic.
+# it with the dispatched kernels and again with MOTE_ISA=generic. Then builds
+# examples/consumer_logs, which links mote::logs and nothing else of mote, and reads the ROS 2
+# recording in DATA_DIR with it (357 scans).
 function(run_step what)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -42,3 +44,22 @@ run_step("build consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run_step("run consumer" ${WORK_DIR}/build/consumer)
 run_step("run consumer, MOTE_ISA=generic" ${CMAKE_COMMAND} -E env MOTE_ISA=generic
          ${WORK_DIR}/build/consumer)
+
+# A reader of recorded data links mote::logs alone: no filter, ray casting or map library.
+run_step("configure logs consumer" ${CMAKE_COMMAND} -S ${CONSUMER_LOGS_SOURCE_DIR}
+         -B ${WORK_DIR}/build-logs -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
+         -DCMAKE_CXX_FLAGS=${flags} -DCMAKE_EXE_LINKER_FLAGS=${flags})
+run_step("build logs consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build-logs)
+file(READ ${WORK_DIR}/build-logs/CMakeFiles/consumer_logs.dir/link.txt link_line)
+string(REGEX MATCH "libmote_(maps|raycast|engine|calibrate|sim|replay)[.]" other "${link_line}")
+if(other)
+  message(FATAL_ERROR "the logs consumer links ${other}: mote::logs must stand alone\n${link_line}")
+endif()
+set(recording ${DATA_DIR}/ros2/mac_take2)
+if(EXISTS ${recording}/metadata.yaml)
+  run_step("run logs consumer on ${recording}" ${WORK_DIR}/build-logs/consumer_logs ${recording}
+           357)
+else()
+  message(STATUS "logs consumer built; ${recording} is absent (see ../shared/data/README), "
+                 "so it reads nothing")
+endif()

@@ -148,11 +148,11 @@ TEST_F(MapErrors, PngFiles) {
   expect_error(y, img, "cannot read PNG");
   // Patch IHDR to claim 60000 x 60000 pixels, with a correct CRC so libpng accepts the header.
   std::string huge = png;
-  for (const int at : {16, 20}) {
+  for (const std::size_t at : {16U, 20U}) {
     huge[at] = 0, huge[at + 1] = 0, huge[at + 2] = '\xea', huge[at + 3] = '\x60';
   }
   const uLong crc = crc32(0, reinterpret_cast<const Bytef*>(huge.data() + 12), 17);
-  for (int k = 0; k < 4; ++k) huge[29 + k] = static_cast<char>(crc >> (24 - 8 * k));
+  for (std::size_t k = 0; k < 4; ++k) huge[29 + k] = static_cast<char>(crc >> (24 - 8 * k));
   write("map.png", huge);
   expect_error(y, img, "header claims 60000 x 60000 pixels");
   // A text chunk after IHDR whose length claims 1.6 GB: refused before libpng allocates it.

@@ -12,8 +12,8 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-std::vector<StampedPose> straight_line(std::size_t n, double dt) {
-  std::vector<StampedPose> out;
+std::vector<logs::StampedPose> straight_line(std::size_t n, double dt) {
+  std::vector<logs::StampedPose> out;
   for (std::size_t k = 0; k < n; ++k) {
     const double t = 100.0 + static_cast<double>(k) * dt;
     out.push_back({t, {static_cast<double>(k) * 0.1, 0.0, 0.3}});
@@ -43,21 +43,21 @@ TEST(Metrics, AteIsRootMeanSquareOfPositionErrors) {
 }
 
 TEST(Metrics, HeadingErrorIsWrappedAndInDegrees) {
-  std::vector<StampedPose> ref{{1.0, {0, 0, 179.0 * kDeg}}, {2.0, {0, 0, 0.0}}};
-  std::vector<StampedPose> est{{1.0, {0, 0, -179.0 * kDeg}}, {2.0, {0, 0, 4.0 * kDeg}}};
+  std::vector<logs::StampedPose> ref{{1.0, {0, 0, 179.0 * kDeg}}, {2.0, {0, 0, 0.0}}};
+  std::vector<logs::StampedPose> est{{1.0, {0, 0, -179.0 * kDeg}}, {2.0, {0, 0, 4.0 * kDeg}}};
   // Errors 2 and 4 degrees (the first across the +-pi seam): RMS = sqrt((4 + 16) / 2).
   const TrajectoryErrors e = compare_trajectories(est, ref);
   EXPECT_NEAR(e.heading_rmse_deg, std::sqrt(10.0), 1e-9);
 }
 
 TEST(Metrics, MatchesNearestStampWithinTolerance) {
-  const std::vector<StampedPose> ref{{1.00, {1, 0, 0}}, {1.10, {2, 0, 0}}, {1.20, {3, 0, 0}}};
-  EXPECT_DOUBLE_EQ(match_reference(ref, 1.06, 0.05)->pose.x, 2.0);
-  EXPECT_DOUBLE_EQ(match_reference(ref, 1.04, 0.05)->pose.x, 1.0);
-  EXPECT_DOUBLE_EQ(match_reference(ref, 1.23, 0.05)->pose.x, 3.0);
-  EXPECT_FALSE(match_reference(ref, 1.30, 0.05).has_value());
-  EXPECT_FALSE(match_reference(ref, 0.90, 0.05).has_value());
-  EXPECT_FALSE(match_reference({}, 1.0, 0.05).has_value());
+  const std::vector<logs::StampedPose> ref{{1.00, {1, 0, 0}}, {1.10, {2, 0, 0}}, {1.20, {3, 0, 0}}};
+  EXPECT_DOUBLE_EQ(logs::match_reference(ref, 1.06, 0.05)->pose.x, 2.0);
+  EXPECT_DOUBLE_EQ(logs::match_reference(ref, 1.04, 0.05)->pose.x, 1.0);
+  EXPECT_DOUBLE_EQ(logs::match_reference(ref, 1.23, 0.05)->pose.x, 3.0);
+  EXPECT_FALSE(logs::match_reference(ref, 1.30, 0.05).has_value());
+  EXPECT_FALSE(logs::match_reference(ref, 0.90, 0.05).has_value());
+  EXPECT_FALSE(logs::match_reference({}, 1.0, 0.05).has_value());
 }
 
 TEST(Metrics, UnsortedReferenceIsSortedBeforeMatching) {
@@ -126,12 +126,12 @@ TEST(Metrics, NeverConvergedWhenTheLastPosesAreOff) {
   est[9].pose.x += 0.6;
   EXPECT_FALSE(compare_trajectories(est, ref).converged_at_s.has_value());
   auto lost = ref;
-  for (StampedPose& p : lost) p.pose.y += 1.0;
+  for (logs::StampedPose& p : lost) p.pose.y += 1.0;
   EXPECT_FALSE(compare_trajectories(lost, ref).converged_at_s.has_value());
 }
 
 // Recovery after a kidnapping at stamp 110 (index 10 of a 1 s trajectory starting at 100).
-std::vector<StampedPose> lost_between(std::size_t from, std::size_t to) {
+std::vector<logs::StampedPose> lost_between(std::size_t from, std::size_t to) {
   auto est = straight_line(60, 1.0);
   for (std::size_t k = from; k < to; ++k) est[k].pose.x += 27.0;
   return est;

@@ -194,7 +194,7 @@ TEST(MapImage, CellsAreColouredAndTheEstimateIsDrawn) {
   EXPECT_EQ(img.at(35, 25)[0], 255);  // bottom row: free
   EXPECT_EQ(img.at(35, 15)[0], 0);    // middle row: occupied
   EXPECT_EQ(img.at(15, 15)[0], 160);  // cell (1, 1): unknown
-  const std::vector<StampedPose> path{{0.0, {0.5, 2.5, 0.0}}, {1.0, {3.5, 2.5, 0.0}}};
+  const std::vector<logs::StampedPose> path{{0.0, {0.5, 2.5, 0.0}}, {1.0, {3.5, 2.5, 0.0}}};
   RgbImage drawn = render_map(map, {{}, path, {}}, options);
   const std::uint8_t* mid = drawn.at(20, 5);  // the path runs along the top row's centre
   EXPECT_GT(mid[0], 200);
@@ -212,7 +212,7 @@ TEST(Report, OutputFolderHoldsTheThreeFiles) {
   std::string magic(8, '\0');
   png.read(magic.data(), 8);
   EXPECT_EQ(magic, std::string("\x89PNG\r\n\x1a\n", 8));
-  EXPECT_EQ(read_tum(dir / "trajectory.tum").size(), 2U);
+  EXPECT_EQ(logs::read_tum(dir / "trajectory.tum").size(), 2U);
   std::filesystem::remove_all(dir.parent_path());
 }
 

@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mote/core/error.hpp"
@@ -30,8 +33,8 @@ OccupancyGrid room(Pose2 origin = {}) {
 }
 
 // 90 beams over 180 degrees, 2 m each, the last one "no return".
-ScanFrame frame_at_start() {
-  ScanFrame f;
+logs::ScanFrame frame_at_start() {
+  logs::ScanFrame f;
   f.scan.angle_min = static_cast<float>(-std::numbers::pi / 2);
   f.scan.angle_increment = static_cast<float>(std::numbers::pi / 90);
   f.scan.range_min = 0.1F;
@@ -39,6 +42,45 @@ ScanFrame frame_at_start() {
   f.scan.ranges.assign(90, 2.0F);
   f.scan.ranges.back() = 30.0F;
   return f;
+}
+
+// The "map" object of the page's data block: size, offset in the whole map, decoded cells.
+struct EmbeddedMap {
+  int width = 0, height = 0, u0 = 0, v0 = 0;
+  std::vector<std::uint8_t> cells;
+};
+
+std::vector<std::uint8_t> decode_base64(std::string_view text) {
+  constexpr std::string_view kAlphabet =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<std::uint8_t> out;
+  unsigned bits = 0, value = 0;
+  for (const char c : text) {
+    if (c == '=') break;
+    value = (value << 6U) | static_cast<unsigned>(kAlphabet.find(c));
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<std::uint8_t>((value >> bits) & 0xFFU));
+    }
+  }
+  return out;
+}
+
+EmbeddedMap embedded_map(const std::string& block) {
+  EmbeddedMap m;
+  const std::size_t at = block.find("\"map\":{");
+  EXPECT_NE(at, std::string::npos);
+  if (at == std::string::npos) return m;
+  double resolution = 0;
+  EXPECT_EQ(
+      std::sscanf(block.c_str() + at,
+                  "\"map\":{\"width\":%d,\"height\":%d,\"u0\":%d,\"v0\":%d,\"resolution\":%lf",
+                  &m.width, &m.height, &m.u0, &m.v0, &resolution),
+      5);
+  const std::size_t begin = block.find("\"cells\":\"", at) + 9;
+  m.cells = decode_base64(std::string_view(block).substr(begin, block.find('"', begin) - begin));
+  return m;
 }
 
 TEST(ViewerFixedPoint, MapCornersSpanTheRangeAlongTheLongerSide) {
@@ -69,7 +111,7 @@ TEST(ViewerRecorder, DecimatesToTheCapAndScalesWeightsToTheHeaviest) {
   config.threads = 1;
   Localizer filter(map, config);
   filter.initialize_global();
-  const ScanFrame frame = frame_at_start();
+  const logs::ScanFrame frame = frame_at_start();
   ASSERT_TRUE(filter.update(frame.odometry, frame.scan));
   ViewerRecorder recorder(map);
   recorder.record(filter, frame);
@@ -107,7 +149,7 @@ TEST(ViewerPage, EmbedsTheDataInOneScriptBlock) {
   config.threads = 1;
   Localizer filter(map, config);
   filter.initialize({5.0, 3.0, 0.0}, Eigen::Matrix3d::Identity() * 0.01);
-  const ScanFrame frame = frame_at_start();
+  const logs::ScanFrame frame = frame_at_start();
   ASSERT_TRUE(filter.update(frame.odometry, frame.scan));
   ReplayResult result(map, config);
   result.trajectory.push_back({frame.stamp, filter.estimate().best().mean});
@@ -126,10 +168,32 @@ TEST(ViewerPage, EmbedsTheDataInOneScriptBlock) {
   ASSERT_NE(data_end, std::string::npos);
   const std::string block = page.substr(data, data_end - data);
   for (const char* key : {"\"total_ms\":[", "\"particle_uvw\":\"", "\"endpoint_uv\":\"",
-                          "\"error_m\":[null]", "\"reference\":[]", "\"map\":{\"width\":100"})
+                          "\"error_m\":[null]", "\"reference\":[]", "\"map\":{\"width\":"})
     EXPECT_NE(block.find(key), std::string::npos) << key;
   EXPECT_EQ(page.find("http"), std::string::npos);  // nothing fetched from the network
   EXPECT_EQ(page.substr(page.size() - 8), "</html>\n");
+
+  // The map is cut to what the run visits: the robot at (5, 3) sees 2 m to its sides and ahead,
+  // plus kViewerMarginM, so the 10 m wide room loses columns on both sides; the cells kept are
+  // the map's own at their offset, and the estimate (given in cells of the whole map) is in them.
+  const EmbeddedMap embedded = embedded_map(block);
+  EXPECT_GT(embedded.u0, 0);
+  EXPECT_LT(embedded.u0 + embedded.width, map.width());
+  EXPECT_LE(embedded.width, 2 * (20 + 10 + 2));  // 2 m each side, 1 m margin, rounding
+  ASSERT_EQ(embedded.cells.size(), static_cast<std::size_t>(embedded.width * embedded.height));
+  for (int v = 0; v < embedded.height; ++v) {
+    for (int u = 0; u < embedded.width; ++u) {
+      ASSERT_EQ(embedded.cells[static_cast<std::size_t>(v * embedded.width + u)],
+                static_cast<std::uint8_t>(map.at({embedded.u0 + u, embedded.v0 + v})))
+          << "cell " << u << ", " << v << " of the embedded map";
+    }
+  }
+  const Point2 estimate =
+      FixedPointGrid(map).cells({result.trajectory[0].pose.x, result.trajectory[0].pose.y});
+  EXPECT_GE(estimate.x, embedded.u0);
+  EXPECT_LT(estimate.x, embedded.u0 + embedded.width);
+  EXPECT_GE(estimate.y, embedded.v0);
+  EXPECT_LT(estimate.y, embedded.v0 + embedded.height);
 }
 
 }  // namespace

@@ -9,15 +9,15 @@
 #include <vector>
 
 #include "catalogue.hpp"
-#include "mote/replay/scan_source.hpp"
+#include "mote/logs/scan_source.hpp"
 
 namespace mote::robustness {
 
 /// Reads every frame of a log (the reader chosen by extension).
 inline void read_log(const fs::path& file, bool lenient) {
-  replay::ReaderOptions options;
+  logs::ReaderOptions options;
   options.lenient = lenient;
-  auto source = replay::open_scan_log(file, options);
+  auto source = logs::open_scan_log(file, options);
   while (source->next()) {
   }
   if (!lenient) {
@@ -29,13 +29,13 @@ inline void read_log(const fs::path& file, bool lenient) {
 /// record: magic, no scans, no odometry), or the log is read and the skip count is non-zero
 /// exactly when strict mode failed, with a first error naming the file on one line.
 inline void check_lenient(const Case& c, const fs::path& file, bool strict_threw) {
-  replay::ReaderOptions options;
+  logs::ReaderOptions options;
   options.lenient = true;
   try {
-    auto source = replay::open_scan_log(file, options);
+    auto source = logs::open_scan_log(file, options);
     while (source->next()) {
     }
-    const replay::ReadStats stats = source->stats();
+    const logs::ReadStats stats = source->stats();
     EXPECT_EQ(stats.records_skipped > 0, strict_threw) << c.name << " (lenient)";
     if (stats.records_skipped == 0) return;
     EXPECT_EQ(stats.first_error.rfind(file.string() + ": ", 0), 0U) << stats.first_error;

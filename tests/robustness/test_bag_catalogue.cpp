@@ -1,4 +1,4 @@
-// Bad-input catalogue for ROS 1 bags, strict and lenient, built in memory with the replay tests'
+// Bad-input catalogue for ROS 1 bags, strict and lenient, built in memory with the log tests'
 // bag builder and cut from the recorded DIS bag.
 #include <gtest/gtest.h>
 

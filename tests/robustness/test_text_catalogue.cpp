@@ -6,7 +6,7 @@
 
 #include "catalogue.hpp"
 #include "mote/engine/localizer_config.hpp"
-#include "mote/replay/tum.hpp"
+#include "mote/logs/tum.hpp"
 #include "mote_test/data.hpp"
 
 namespace mote::robustness {
@@ -19,7 +19,7 @@ const std::string kTum = "# timestamp x y z qx qy qz qw\n" + kPose +
                          "2.0 1e-3 2E+1 0.0 0.0 0.0 -0.707106781 0.707106781\n\n"
                          "2.5 0 0 0 0 0 0 1\n";
 
-void read_trajectory(const fs::path& file) { (void)replay::read_tum(file); }
+void read_trajectory(const fs::path& file) { (void)logs::read_tum(file); }
 
 /// kPose with field `k` replaced by `value`.
 std::string pose_with(std::size_t k, const std::string& value) {

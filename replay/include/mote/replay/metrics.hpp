@@ -9,15 +9,16 @@
 #include <span>
 #include <vector>
 
-#include "mote/replay/tum.hpp"
+#include "mote/logs/tum.hpp"
 
 namespace mote::replay {
 
 /// How estimates are paired with reference poses and what "converged" means.
 struct MetricOptions {
-  double match_tolerance_s = 0.05;  ///< s, largest stamp gap to the nearest reference pose
-  double converged_m = 0.5;         ///< m, position error under which a pose counts as converged
-  double converged_deg = 10.0;      ///< degrees, heading error bound for converged
+  double match_tolerance_s =
+      logs::kReferenceMatchTolerance;  ///< s, largest stamp gap to a reference
+  double converged_m = 0.5;            ///< m, position error under which a pose counts as converged
+  double converged_deg = 10.0;         ///< degrees, heading error bound for converged
   /// Matched estimates per window of the convergence rule (TrajectoryErrors::converged_at_s).
   std::size_t converged_window = 20;
   /// Estimates outside the bounds a window may hold and still count as converged: 1 in 20 lets
@@ -52,17 +53,9 @@ struct TrajectoryErrors {
   std::optional<AfterConvergence> after_convergence;
 };
 
-/// The reference pose nearest in time to `stamp` within `tolerance` s, or nullopt. `reference`
-/// must be sorted by stamp (sort_by_stamp).
-[[nodiscard]] std::optional<StampedPose> match_reference(std::span<const StampedPose> reference,
-                                                         double stamp, double tolerance);
-
-/// A copy of poses sorted by stamp (stable, so equal stamps keep file order).
-[[nodiscard]] std::vector<StampedPose> sort_by_stamp(std::span<const StampedPose> poses);
-
 /// Compares `estimate` (in run order) with `reference` (any order).
-[[nodiscard]] TrajectoryErrors compare_trajectories(std::span<const StampedPose> estimate,
-                                                    std::span<const StampedPose> reference,
+[[nodiscard]] TrajectoryErrors compare_trajectories(std::span<const logs::StampedPose> estimate,
+                                                    std::span<const logs::StampedPose> reference,
                                                     const MetricOptions& options = {});
 
 /// Filter updates it took to recover from a kidnapping at `kidnap_stamp` (s): among the estimates
@@ -73,8 +66,9 @@ struct TrajectoryErrors {
 /// recovered, or recovered too close to the end of the log to hold). `sorted_reference` must be
 /// sorted by stamp (sort_by_stamp).
 [[nodiscard]] std::optional<std::size_t> recovery_updates(
-    std::span<const StampedPose> estimate, std::span<const StampedPose> sorted_reference,
-    double kidnap_stamp, double within_m = 0.3, std::size_t hold = 20, double tolerance = 0.05);
+    std::span<const logs::StampedPose> estimate,
+    std::span<const logs::StampedPose> sorted_reference, double kidnap_stamp, double within_m = 0.3,
+    std::size_t hold = 20, double tolerance = 0.05);
 
 /// Mean and order statistics of a sample (e.g. update times, ms). All zero for an empty sample.
 struct Percentiles {

@@ -15,11 +15,11 @@
 #include "mote/core/pose.hpp"
 #include "mote/engine/localizer.hpp"
 #include "mote/engine/localizer_config.hpp"
+#include "mote/logs/scan_source.hpp"
+#include "mote/logs/tum.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 #include "mote/replay/metrics.hpp"
 #include "mote/replay/range_table_report.hpp"
-#include "mote/replay/scan_source.hpp"
-#include "mote/replay/tum.hpp"
 
 namespace mote::replay {
 
@@ -36,7 +36,7 @@ struct ReplayOptions {
   std::filesystem::path log;        ///< CARMEN (.clf, .log) or ROS 1 bag (.bag)
   std::filesystem::path reference;  ///< TUM reference trajectory; empty = none
   LocalizerConfig config;
-  ReaderOptions reader;
+  logs::ReaderOptions reader;
   InitMode init = InitMode::kAuto;
   Pose2 init_pose;                   ///< m, rad; used by InitMode::kPose
   double init_sigma_xy = 0.1;        ///< m, std. dev. of the initial cloud in x and y
@@ -51,7 +51,7 @@ struct ReplayOptions {
   std::function<void(std::size_t scans)> progress;
   /// Called after every update that ran (after its UpdateRecord) with the filter and the frame
   /// it ran on; may be empty. `mote replay --viewer` records the page's data here (viewer.hpp).
-  std::function<void(const Localizer& filter, const ScanFrame& frame)> on_update;
+  std::function<void(const Localizer& filter, const logs::ScanFrame& frame)> on_update;
 };
 
 /// One filter update that ran.
@@ -102,15 +102,15 @@ struct ReplayResult {
   double first_stamp = 0.0;  ///< s, stamp of the first scan
   /// The estimate after every update that ran: the heaviest cluster's mean matched to the map
   /// (LocalizationEstimate::refined).
-  std::vector<StampedPose> trajectory;
-  std::vector<StampedPose> particle_trajectory;       ///< the heaviest cluster's mean itself
+  std::vector<logs::StampedPose> trajectory;
+  std::vector<logs::StampedPose> particle_trajectory;       ///< the heaviest cluster's mean itself
   std::vector<UpdateRecord> updates;                  ///< one per update that ran
   std::array<std::size_t, kOutcomeCount> outcomes{};  ///< update() calls by UpdateOutcome
   std::string first_unusual_reason;                   ///< reason of the first non-normal outcome
-  ReadStats reader;                                   ///< what the log reader skipped
+  logs::ReadStats reader;                             ///< what the log reader skipped
   float laser_range_max = 0.0F;  ///< m, range_max of the first scan (the laser's no-return value)
   std::string laser_range_max_source;      ///< where it came from (ScanSource::range_max_source)
-  std::vector<StampedPose> reference;      ///< the reference trajectory (may be empty)
+  std::vector<logs::StampedPose> reference;      ///< the reference trajectory (may be empty)
   std::optional<TrajectoryErrors> errors;  ///< with a reference
   std::optional<TrajectoryErrors> particle_errors;  ///< of particle_trajectory, with a reference
   std::optional<KidnapRecovery> kidnap;             ///< with a reference and kidnapped_at

@@ -18,9 +18,9 @@
 #include "mote/core/free_space.hpp"
 #include "mote/core/pose.hpp"
 #include "mote/engine/localizer.hpp"
+#include "mote/logs/scan_source.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 #include "mote/replay/replay_run.hpp"
-#include "mote/replay/scan_source.hpp"
 
 namespace mote::replay {
 
@@ -28,6 +28,9 @@ namespace mote::replay {
 inline constexpr std::size_t kViewerParticles = 2000;
 /// Most clusters whose means are recorded per update (the heaviest).
 inline constexpr std::size_t kViewerClusters = 8;
+/// m: how far the map embedded in the page reaches beyond everything the page draws (the
+/// estimate and reference, particles, scan endpoints, cluster means); the rest is cut off.
+inline constexpr double kViewerMarginM = 1.0;
 
 /// A value rounded to 16 bits: clamped to [0, 65535], NaN gives 0.
 [[nodiscard]] inline std::uint16_t to_fixed_point(double value) noexcept {
@@ -95,7 +98,7 @@ class ViewerRecorder {
  public:
   explicit ViewerRecorder(const OccupancyGrid& map) : grid_(map) {}
   /// Records the filter's state after an update that ran on `frame`.
-  void record(const Localizer& filter, const ScanFrame& frame);
+  void record(const Localizer& filter, const logs::ScanFrame& frame);
   [[nodiscard]] const ViewerRecording& recording() const noexcept { return recording_; }
 
  private:
@@ -108,8 +111,9 @@ class ViewerRecorder {
   std::vector<float> logw_;  // scratch: log-weights of the recorded particles
 };
 
-/// Writes the page for `result` and its recording (one entry per update) to `out`. Throws
-/// mote::Error when the recording does not belong to the result.
+/// Writes the page for `result` and its recording (one entry per update) to `out`, with the
+/// part of the map the run visits (kViewerMarginM). Throws mote::Error when the recording does
+/// not belong to the result.
 void write_viewer_page(std::ostream& out, const ReplayResult& result,
                        const ViewerRecording& recording);
 

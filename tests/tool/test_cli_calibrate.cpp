@@ -1,0 +1,64 @@
+// `mote calibrate` and the simulator's noise knobs, run as the user runs them.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cli_test_util.hpp"
+
+namespace mote_cli_test {
+namespace {
+
+const fs::path kMap = fs::path(MOTE_SOURCE_DIR) / "sim/data/floorplan.yaml";
+
+TEST(CliCalibrate, SimulatedLogGivesALoadableConfigAndPicture) {
+  const fs::path dir = scratch("calibrate_ok");
+  const Outcome sim = mote("simulate --map '" + kMap.string() + "' --out '" + dir.string() +
+                           "' --seconds 200 --scan-rate 1.5 --alphas 0.1,0.02,0.05,0.02 "
+                           "--mixture 0.8,0.1,0.05,0.05 --mixture-shape 0.05,0.5");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const std::string noise = slurp(dir / "sim.noise.yaml");
+  EXPECT_NE(noise.find("alpha3: 0.05"), std::string::npos) << noise;
+  EXPECT_NE(noise.find("sigma_hit: 0.05"), std::string::npos) << noise;
+  const fs::path out = dir / "calib";
+  const Outcome cal =
+      mote("calibrate --map '" + kMap.string() + "' --log '" + (dir / "sim.clf").string() +
+           "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" + out.string() + "'");
+  ASSERT_EQ(cal.status, 0) << cal.err;
+  EXPECT_NE(cal.out.find("beam          z_hit"), std::string::npos) << cal.out;
+  EXPECT_GT(fs::file_size(out / "calibration.png"), 1000U);
+  // The config drives a replay.
+  const Outcome rep =
+      mote("replay --map '" + kMap.string() + "' --log '" + (dir / "sim.clf").string() +
+           "' --reference '" + (dir / "sim.gt.tum").string() + "' --config '" +
+           (out / "config.yaml").string() + "' --out '" + (dir / "rep").string() + "' --quiet");
+  EXPECT_EQ(rep.status, 0) << rep.err;
+}
+
+TEST(CliCalibrate, ShortLogIsOneLineAndNoConfig) {
+  const fs::path dir = scratch("calibrate_short");
+  ASSERT_EQ(mote("simulate --map '" + kMap.string() + "' --out '" + dir.string() + "' --seconds 5")
+                .status,
+            0);
+  const fs::path out = dir / "calib";
+  const Outcome cal = mote("calibrate --map '" + kMap.string() + "' --log '" +
+                           (dir / "sim.clf").string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(cal.status, 1);
+  EXPECT_EQ(lines(cal.err), 1) << cal.err;
+  EXPECT_NE(cal.err.find("log too short"), std::string::npos) << cal.err;
+  EXPECT_FALSE(fs::exists(out / "config.yaml"));
+}
+
+TEST(CliCalibrate, NoiseKnobsCheckTheirValues) {
+  const fs::path dir = scratch("calibrate_knobs");
+  const Outcome bad =
+      mote("simulate --map '" + kMap.string() + "' --out '" + dir.string() + "' --alphas 0.1,0.2");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--alphas"), std::string::npos) << bad.err;
+  const Outcome sum = mote("simulate --map '" + kMap.string() + "' --out '" + dir.string() +
+                           "' --mixture 0.5,0.1,0.1,0.1");
+  EXPECT_EQ(sum.status, 1);
+  EXPECT_NE(sum.err.find("sum to 1"), std::string::npos) << sum.err;
+}
+
+}  // namespace
+}  // namespace mote_cli_test
