@@ -19,7 +19,6 @@
 #include <numbers>
 #include <random>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "mote/maps/map_loader.hpp"
@@ -93,33 +92,24 @@ const mote::OccupancyGrid* grid_for(int map) {
 /// random rooms and walls.
 mote::OccupancyGrid big_grid() { return mote::load_map(mote::bench::write_office_map(4000)); }
 
-/// How a table answers: every ray from its entry, rays of uncertified entries exactly, or every
-/// ray confirmed on the map (RangeTableOptions::certify, ::confirm).
-enum class TableMode { kPlain, kCertified, kConfirmed };
-
-mote::RangeTableOptions options_for(TableMode mode) {
-  return {.certify = mode == TableMode::kCertified, .confirm = mode == TableMode::kConfirmed};
-}
-
 /// The range table of a map, built once per process (default options: 512 angles, 256 MB).
-const mote::RangeTable* table_for(int map, TableMode mode) {
-  static std::map<std::pair<int, TableMode>, std::unique_ptr<mote::RangeTable>> cache;
-  auto& slot = cache[{map, mode}];
+const mote::RangeTable* table_for(int map) {
+  static std::map<int, std::unique_ptr<mote::RangeTable>> cache;
+  auto& slot = cache[map];
   if (!slot) {
     const mote::OccupancyGrid* grid = grid_for(map);
     if (grid == nullptr) return nullptr;
-    slot = std::make_unique<mote::RangeTable>(*grid, options_for(mode));
+    slot = std::make_unique<mote::RangeTable>(*grid);
   }
   return slot.get();
 }
 
 /// The range table, built once per map outside the timed loop.
-template <TableMode kMode>
 struct TableCaster {
   const mote::RangeTable* table;
   TableCaster(const mote::OccupancyGrid& grid, const mote::RayCastOptions&) {
     for (int map : {0, 1}) {
-      if (grid_for(map) == &grid) table = table_for(map, kMode);
+      if (grid_for(map) == &grid) table = table_for(map);
     }
   }
   void cast(const mote::RayBatch& batch, std::span<float> ranges) const {
@@ -179,29 +169,18 @@ void BM_RayCast_GridWalk(benchmark::State& state) {
 }
 
 void BM_RayCast_Table(benchmark::State& state) {
-  run_cast<TableCaster<TableMode::kPlain>>(state, mote::RayCastOptions{});
-}
-
-/// The certified table: rays of uncertified entries are cast with Embree.
-void BM_RayCast_TableCertified(benchmark::State& state) {
-  run_cast<TableCaster<TableMode::kCertified>>(state, mote::RayCastOptions{});
-}
-
-/// The confirmed table: every ray's range confirmed on the map, the unconfirmed cast with Embree.
-void BM_RayCast_TableConfirmed(benchmark::State& state) {
-  run_cast<TableCaster<TableMode::kConfirmed>>(state, mote::RayCastOptions{});
+  run_cast<TableCaster>(state, mote::RayCastOptions{});
 }
 
 /// Table build time with the default options (512 angles, 256 MB budget): map 0 Intel,
 /// 2 the generated 4000 x 4000 map, which is over budget: tiles built on first use (the
-/// time is then the part built up front), or with certification a coarser lattice. Counters:
+/// time is then the part built up front). Counters:
 /// the table's size and layout, and (untimed, after the builds) its accuracy against Embree on
 /// 20000 rays from free cells up to 30 m (of 8 tiles when tiled), which on a coarse lattice is
 /// not what test_range_table measures on every cell; tile_ms is the time per tile of the tiles
 /// that check built.
 void BM_RangeTable_Build(benchmark::State& state) {
   const int map = static_cast<int>(state.range(0));
-  const auto mode = static_cast<TableMode>(state.range(2));
   static const mote::OccupancyGrid big = big_grid();
   const mote::OccupancyGrid* grid = map == 2 ? &big : grid_for(map);
   if (grid == nullptr) {
@@ -212,7 +191,7 @@ void BM_RangeTable_Build(benchmark::State& state) {
   std::unique_ptr<mote::RangeTable> table;
   for (auto _ : state) {
     table.reset();
-    arena.execute([&] { table = std::make_unique<mote::RangeTable>(*grid, options_for(mode)); });
+    arena.execute([&] { table = std::make_unique<mote::RangeTable>(*grid); });
   }
   const mote::RangeTableStats& stats = table->stats();
   const mote::RayCaster exact(*grid);
@@ -232,7 +211,6 @@ void BM_RangeTable_Build(benchmark::State& state) {
   state.counters["MB"] = static_cast<double>(stats.bytes) / 1048576.0;
   state.counters["lattice"] = stats.lattice;
   state.counters["angles"] = stats.angles;
-  state.counters["uncertified"] = stats.uncertified;
   state.SetLabel(map == 0 ? "intel" : map == 1 ? "willow" : "4000x4000");
 }
 
@@ -283,16 +261,10 @@ BENCHMARK(BM_RayCast_EmbreePrepared)->Apply(cases)->Apply(settled_cases);
 BENCHMARK(BM_RayCast_Embree1)->Apply(cases);
 BENCHMARK(BM_RayCast_GridWalk)->Apply(cases)->Apply(settled_cases);
 BENCHMARK(BM_RayCast_Table)->Apply(cases);
-BENCHMARK(BM_RayCast_TableCertified)->Apply(cases);
-BENCHMARK(BM_RayCast_TableConfirmed)->Apply(cases);
 BENCHMARK(BM_RangeTable_Build)
-    ->ArgNames({"map", "threads", "mode"})  // mode: 0 plain, 1 certified, 2 confirmed
-    ->Args({0, 2, 0})
-    ->Args({2, 2, 0})
-    ->Args({0, 2, 1})
-    ->Args({2, 2, 1})
-    ->Args({0, 2, 2})
-    ->Args({2, 2, 2})
+    ->ArgNames({"map", "threads"})
+    ->Args({0, 2})
+    ->Args({2, 2})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);

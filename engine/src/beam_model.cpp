@@ -25,8 +25,8 @@ void BeamModel::expected_ranges(const RayBatch& batch, std::span<float> ranges) 
 }
 
 void BeamModel::prepare(const BeamSet& beams, const ParticleView& particles) const {
-  // The table builds tiles, or chooses how to cast uncertified rays; either caster chooses
-  // whether the set's sensors gather enough to cast in bundles.
+  // A tiled table builds the tiles the particles need; exact casting chooses whether the set's
+  // sensors gather enough to cast in bundles.
   const RayBatch batch{.x = {particles.x, particles.count},
                        .y = {particles.y, particles.count},
                        .theta = {particles.theta, particles.count},

@@ -138,14 +138,12 @@ const std::vector<Key>& keys() {
         field<double>("recovery_fit_band", kNum, &LocalizerConfig::recovery_fit_band),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
         enum_key(
-            "ray_casting", "exact, table or table_certified",
+            "ray_casting", "exact or table",
             [](LocalizerConfig& c, const std::string& s) {
               if (s == "exact")
                 c.ray_casting = RayCasting::kExact;
               else if (s == "table")
                 c.ray_casting = RayCasting::kTable;
-              else if (s == "table_certified")
-                c.ray_casting = RayCasting::kTableCertified;
               else
                 throw YAML::BadConversion(YAML::Mark::null_mark());
             },
@@ -350,8 +348,6 @@ const char* name_of(RayCasting m) {
   switch (m) {
     case RayCasting::kTable:
       return "table";
-    case RayCasting::kTableCertified:
-      return "table_certified";
     case RayCasting::kExact:
       break;
   }

@@ -21,8 +21,8 @@ using HugeArray = std::unique_ptr<T[], FreeDeleter>;
 void* allocate_huge_bytes(std::size_t bytes);
 
 /// n uninitialized values. Why: first touching the Intel table's 190 MB in 4 KB pages was 11 %
-/// of its certified build's perf samples (the page-fault path of a virtual machine); 2 MB pages
-/// take 512 times fewer faults.
+/// of a build's perf samples (the page-fault path of a virtual machine); 2 MB pages take 512
+/// times fewer faults.
 template <class T>
 HugeArray<T> allocate_huge(std::size_t n) {
   static_assert(std::is_trivial_v<T>);

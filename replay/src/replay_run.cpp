@@ -119,9 +119,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   const RangeTable* table = filter.range_table();
   if (table) {
     result.range_table = summarize_range_table(
-        result.map, *table,
-        {.unknown_blocks = options.config.unknown_cells_block_rays,
-         .certify = options.config.ray_casting == RayCasting::kTableCertified});
+        result.map, *table, {.unknown_blocks = options.config.unknown_cells_block_rays});
   }
   // After the accuracy check, whose tile builds are not the updates'.
   const std::size_t tiles_before = table ? table->tiles_built() : 0;

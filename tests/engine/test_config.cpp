@@ -229,13 +229,9 @@ TEST(ParseConfig, RayCastingSelectsExactOrTable) {
   EXPECT_TRUE(LocalizerConfig{}.range_table_tiles) << "tiles over budget by default";
   EXPECT_TRUE(loaded.warnings.empty());
   EXPECT_EQ(parse_config("ray_casting: exact\n", "e.yaml").config.ray_casting, RayCasting::kExact);
-  EXPECT_EQ(parse_config("ray_casting: table_certified\n", "c.yaml").config.ray_casting,
-            RayCasting::kTableCertified);
-  LocalizerConfig certified;
-  certified.ray_casting = RayCasting::kTableCertified;
-  EXPECT_EQ(parse_config(config_yaml(certified, LocalizerConfig{}), "w.yaml").config, certified);
-  expect_input_error("ray_casting: fast\n",
-                     "line 1, key 'ray_casting': expected exact, table or table_certified");
+  expect_input_error("ray_casting: fast\n", "line 1, key 'ray_casting': expected exact or table");
+  expect_input_error("ray_casting: table_certified\n",
+                     "line 1, key 'ray_casting': expected exact or table");
   expect_input_error("range_table_angles: 100\n", "range_table_angles");
   expect_input_error("range_table_budget_mb: 0\n", "range_table_budget_mb");
 }

@@ -30,7 +30,7 @@ constexpr float kMaxRange = 30.0F;
 /// that makes the table less accurate fails (within two cells: rays that are grossly off, which
 /// the p99 alone does not count once most rays are right); issue 19 asked for 99% within one cell,
 /// which a 256 MB table of these maps does not reach (the misses are rays grazing walls, see
-/// BENCHMARKS.md); the certified table does (test_range_table_certified.cpp).
+/// BENCHMARKS.md).
 struct Floor {
   const char* map;
   double within_one_cell;

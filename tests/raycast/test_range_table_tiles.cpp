@@ -23,17 +23,15 @@ constexpr float kMaxRange = 30.0F;
 
 /// Intel at 64 angles: the whole table on every cell takes about 24 MB, so an 8 MB budget
 /// tiles it (a tile is 64 x 64 cells x 64 angles, 512 KB).
-RangeTableOptions tiled_options(bool certify = false, bool confirm = false) {
+RangeTableOptions tiled_options() {
   RangeTableOptions o;
   o.angles = 64;
   o.memory_budget_bytes = std::size_t{8} << 20U;
-  o.certify = certify;
-  o.confirm = confirm;
   return o;
 }
 
-RangeTableOptions whole_options(bool certify = false, bool confirm = false) {
-  RangeTableOptions o = tiled_options(certify, confirm);
+RangeTableOptions whole_options() {
+  RangeTableOptions o = tiled_options();
   o.memory_budget_bytes = std::size_t{1} << 30U;
   return o;
 }
@@ -67,11 +65,11 @@ std::vector<float> cast(const RangeTable& table, const test::Scatter& s) {
   return out;
 }
 
-void expect_read_as_the_whole_table(bool certify, bool confirm = false) {
+TEST(RangeTableTiles, ReadAsTheWholeTableThroughBuildsAndEvictions) {
   MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
   const OccupancyGrid grid = load_map(path);
-  const RangeTable whole(grid, whole_options(certify, confirm));
-  const RangeTable tiled(grid, tiled_options(certify, confirm));
+  const RangeTable whole(grid, whole_options());
+  const RangeTable tiled(grid, tiled_options());
   ASSERT_EQ(whole.stats().tile_cells, 0);
   ASSERT_EQ(tiled.stats().tile_cells, 64);
   ASSERT_EQ(tiled.stats().points, whole.stats().points);
@@ -87,11 +85,7 @@ void expect_read_as_the_whole_table(bool certify, bool confirm = false) {
     ASSERT_GT(s.x.size(), 10U);
     EXPECT_EQ(cast(tiled, s), cast(whole, s)) << "cloud around pose " << c;
   }
-  std::cout << "Intel tiled"
-            << (certify   ? ", certified: "
-                : confirm ? ", confirmed: "
-                          : ": ")
-            << tiled.stats().max_resident_tiles << " tiles resident at most, "
+  std::cout << "Intel tiled: " << tiled.stats().max_resident_tiles << " tiles resident at most, "
             << tiled.tiles_built() << " built for " << centres.size() << " clouds\n";
   EXPECT_GT(tiled.tiles_built(), tiled.stats().max_resident_tiles) << "no tile was evicted";
   // Single rays build their tiles too.
@@ -100,22 +94,6 @@ void expect_read_as_the_whole_table(bool certify, bool confirm = false) {
     EXPECT_EQ(tiled.cast_one({all.x[p], all.y[p]}, angle, kMaxRange),
               whole.cast_one({all.x[p], all.y[p]}, angle, kMaxRange));
   }
-}
-
-TEST(RangeTableTiles, ReadAsTheWholeTableThroughBuildsAndEvictions) {
-  expect_read_as_the_whole_table(false);
-}
-
-/// Each tile is certified with a ring of one cell around it (an entry's verdict compares its
-/// row with its neighbours'), so its verdicts are the whole certified table's.
-TEST(RangeTableTiles, CertifiedReadAsTheWholeCertifiedTable) {
-  expect_read_as_the_whole_table(true);
-}
-
-/// A tiled table's candidates are the whole table's (every cell's centre, in the same order),
-/// so its confirmed claims, and the rays it casts exactly, are the whole confirmed table's.
-TEST(RangeTableTiles, ConfirmedReadAsTheWholeConfirmedTable) {
-  expect_read_as_the_whole_table(false, true);
 }
 
 TEST(RangeTableTiles, SensorsInTilesTheBudgetCannotHoldAreCastExactly) {

@@ -1,8 +1,7 @@
 // Rays cast in bundles (raycast/src/ray_bundles.hpp) on the recorded maps: the exact grid
 // walk's ranges for tracking clouds and for scattered sensors, whatever group or grouping a
-// sensor falls in; and a certified range table that casts its uncertified rays in bundles for
-// gathered sensors, and the Embree caster that casts all of theirs so, read the grid walk's
-// ranges there, the same whole or in prepared parts, on 1 or 2 threads.
+// sensor falls in; and the Embree caster, which casts all of a gathered set's rays so, reads the
+// grid walk's ranges there, the same whole or in prepared parts, on 1 or 2 threads.
 
 #include <gtest/gtest.h>
 #include <oneapi/tbb/task_arena.h>
@@ -16,7 +15,6 @@
 #include "grid_walk.hpp"
 #include "mote/maps/map_loader.hpp"
 #include "mote/raycast/grid_ray_caster.hpp"
-#include "mote/raycast/range_table.hpp"
 #include "mote/raycast/ray_caster.hpp"
 #include "mote_test/data.hpp"
 #include "ray_bundles.hpp"
@@ -226,53 +224,6 @@ std::vector<float> prepared_in_two_parts(const Caster& caster, const Poses& pose
     part(half, poses.x.size());
   });
   return parts;
-}
-
-/// A certified table at 64 angles (small, so sanitizer builds stay quick).
-RangeTableOptions certified() {
-  RangeTableOptions o;
-  o.angles = 64;
-  o.certify = true;
-  return o;
-}
-
-TEST(RangeTableCertified, GatheredSensorsReadTheGridWalksRangesFromBundles) {
-  MOTE_REQUIRE_DATA(path, "intel/intel.yaml");
-  const OccupancyGrid grid = load_map(path);
-  const RangeTable table(grid, certified());
-  const std::vector<float> beams = beam_angles();
-  // One robot's cloud: groups of hundreds, as the beam model's tracking particles.
-  const Poses poses = clouds(grid, 1, 3000, 0.05, 0.03, 3);
-  const RayBatch batch = batch_of(poses, beams);
-  std::vector<float> got(batch.ray_count());
-  table.cast(batch, got);
-  // Each sensor alone gathers with none: its uncertified rays go to Embree.
-  std::vector<float> alone(batch.ray_count());
-  for (std::size_t p = 0; p < poses.x.size(); ++p) {
-    const Poses one{{poses.x[p]}, {poses.y[p]}, {poses.theta[p]}};
-    table.cast(batch_of(one, beams), std::span(alone).subspan(p * beams.size(), beams.size()));
-  }
-  // Where the two differ, the gathered cast is the exact one: the grid walk's range.
-  const GridRayCaster walk(grid);
-  std::vector<float> walked(batch.ray_count());
-  walk.cast(batch, walked);
-  int differ = 0;
-  int off_walk = 0;
-  for (std::size_t k = 0; k < got.size(); ++k) {
-    if (got[k] == alone[k]) continue;
-    ++differ;
-    off_walk += std::abs(got[k] - walked[k]) > 1e-3F ? 1 : 0;
-  }
-  // Certified entries read the same either way, so the rays that differ are uncertified ones,
-  // cast in bundles for the cloud and with Embree alone (arithmetic that differs in the last
-  // bits, and at a cell corner, where Embree and the walk can disagree, by more).
-  EXPECT_GT(differ, 0) << "no ray was cast in bundles";
-  EXPECT_LE(off_walk, static_cast<int>(got.size() / 10000)) << "of " << differ << " rays";
-
-  // The same ranges prepared on the whole set and read in two parts, on 1 or 2 threads.
-  for (const int threads : {1, 2}) {
-    EXPECT_EQ(prepared_in_two_parts(table, poses, beams, threads), got) << threads << " threads";
-  }
 }
 
 TEST(RayCasterPrepared, GatheredSensorsReadTheGridWalksRangesFromBundles) {

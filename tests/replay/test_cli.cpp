@@ -213,8 +213,7 @@ TEST(Cli, InfoDescribesRos2AndCarmenLogs) {
 }
 
 // Issue 19: `mote info --map` builds the range table and prints its layout, memory, build time
-// and error against Embree (with --certified, the share of entries whose rays are cast exactly);
-// a budget too small for any table is a one-line error naming the
+// and error against Embree; a budget too small for any table is a one-line error naming the
 // size needed.
 TEST(Cli, InfoMapReportsTheRangeTable) {
   const Outcome o = mote("info --map '" + floorplan().string() + "' --range-table-angles 64");
@@ -223,7 +222,6 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
                            "% within 1 cell", "error (cells)"}) {
     EXPECT_NE(o.out.find(text), std::string::npos) << text << " in\n" << o.out;
   }
-  EXPECT_EQ(o.out.find("certified"), std::string::npos) << o.out;
   EXPECT_EQ(o.out.find("built on first use"), std::string::npos) << o.out;
   // 12.5 MB on every cell at 64 angles: 3 MB tiles it.
   const Outcome tiled = mote("info --map '" + floorplan().string() +
@@ -240,29 +238,11 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
   EXPECT_NE(coarse.out.find("64 angles, lattice "), std::string::npos) << coarse.out;
   EXPECT_EQ(coarse.out.find("64 angles, lattice 1 "), std::string::npos) << coarse.out;
   EXPECT_NE(coarse.out.find("% within 1 cell"), std::string::npos) << coarse.out;
-  const Outcome certified =
-      mote("info --map '" + floorplan().string() + "' --range-table-angles 64 --certified");
-  ASSERT_EQ(certified.status, 0) << certified.err;
-  EXPECT_NE(certified.out.find("% are cast exactly"), std::string::npos) << certified.out;
   const Outcome tiny =
       mote("info --map '" + floorplan().string() + "' --range-table-budget-mb 0.001");
   EXPECT_EQ(tiny.status, 1) << tiny.out;
   EXPECT_EQ(lines(tiny.err), 1) << tiny.err;
   EXPECT_NE(tiny.err.find("needs"), std::string::npos) << tiny.err;
-}
-
-// Issue 19: report.json says whether the beam model's table is certified and which share of its
-// entries sends rays to Embree; the certified table tracks a simulated log.
-TEST(Cli, ReplayReportsTheCertifiedTable) {
-  const fs::path dir = scratch("certified");
-  ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
-  const std::string report = replay_beam_report(dir, "ray_casting: table_certified\n");
-  EXPECT_NE(report.find("\"certified\": true"), std::string::npos) << report;
-  const double uncertified = json_number(report, "uncertified_entries");
-  EXPECT_GT(uncertified, 0.0);
-  EXPECT_LT(uncertified, 1.0);
-  EXPECT_GT(json_number(report, "within_one_cell"), 0.99);
-  EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
 }
 
 // Issue 19: a table over budget is built in tiles as the updates need them; report.json counts

@@ -24,11 +24,7 @@ enum class LaserModel : std::uint8_t {
 /// Where the beam model's expected ranges come from.
 enum class RayCasting : std::uint8_t {
   kExact,  ///< an Embree ray per particle and beam
-  kTable,  ///< a precomputed range table (RangeTable), built when the Localizer is
-  /// The range table with its entries certified at build time (RangeTableOptions::certify): the
-  /// rays of entries that cannot vouch for a cell's accuracy are cast exactly with Embree; 99 %
-  /// of rays within one cell of exact casting, at 1.2-2.5 times Embree's speed.
-  kTableCertified,
+  kTable,  ///< a precomputed range table (RangeTable), built with the Localizer
 };
 
 /// How the likelihood-field model combines beams.

@@ -25,26 +25,10 @@ struct RangeTableOptions {
   /// points) until the table fits; ConfigError when even the coarsest lattice does not.
   std::size_t memory_budget_bytes = std::size_t{256} << 20U;
   std::size_t particle_grain = 64;  ///< as RayCastOptions::particle_grain
-  /// Certify entries at build time and cast the rays of uncertified ones exactly (the Embree
-  /// scene and a bit mask of the map are built beside the table and counted in its bytes): in
-  /// bundles (raycast/src/ray_bundles.hpp) when the batch's sensors gather in groups of a
-  /// neighbourhood and a heading, else with Embree. Entries then answer by
-  /// interpolating between the two table directions around the ray. Off: every ray reads the
-  /// table, at the nearest direction, fastest and least accurate (BENCHMARKS.md, "Range table").
-  bool certify = false;
-  /// Confirm each ray's range on the map instead of trusting one entry: the entries of the
-  /// lattice points nearest the ray on either side, at the table directions on either side of
-  /// it, each name the wall face their ray entered; the ray's own crossing of that face line is
-  /// an exact range when the map blocks beyond it and is free before it, and the nearest such
-  /// crossing answers. Rays no entry confirms are cast exactly with Embree (the scene is built
-  /// beside the table and counted in its bytes). Ignored when certify is on. 99.2-99.5 % of rays
-  /// within a cell of Embree, most of them exact, but for now slower than Embree casting
-  /// (BENCHMARKS.md, "Claims that name a wall face"); no LocalizerConfig switch yet.
-  bool confirm = false;
   /// When the table on every cell is over budget: build it in tiles of 64 x 64 cells on first
-  /// use (each certified as it is built, when certify is on) instead of coarsening the
-  /// lattice, holding as many as the budget allows and evicting the least recently used.
-  /// Linux only; elsewhere, or when the budget holds fewer than 4 tiles, the lattice coarsens.
+  /// use instead of coarsening the lattice, holding as many as the budget allows and evicting the
+  /// least recently used. Linux only; elsewhere, or when the budget holds fewer than 4 tiles, the
+  /// lattice coarsens.
   bool tiles = true;
 };
 
@@ -56,10 +40,6 @@ struct RangeTableStats {
   std::size_t bytes = 0;        ///< everything the table holds: ranges, index, blocking mask
   double build_seconds = 0.0;   ///< wall clock of the sweep
   double units_per_cell = 8.0;  ///< fixed-point range units per cell
-  /// Share of entries that cannot vouch for their rays within a cell (a corner or gap nearby, a
-  /// jump between neighbouring angles): their rays are cast exactly, with Embree. Not known
-  /// (0) for a tiled table, whose tiles are certified as they are built.
-  double uncertified = 0.0;
   /// 0: the whole table is built. Otherwise tiles of this many cells a side are built on first
   /// use (a lattice of every cell), at most max_resident_tiles at once; `bytes` counts them all
   /// and build_seconds the part built up front.
@@ -93,10 +73,7 @@ class RangeTable {
   /// cast_prepared(each part) from any, which reads the table without building or evicting
   /// (rays of sensors whose tiles are not resident are cast exactly) and runs concurrently.
   /// Which tiles are resident then depends on the whole set, not on the order the parts run
-  /// in. A certified table also decides there, from the whole set, whether the rays of its
-  /// uncertified entries are cast in bundles (when the sensors gather, as a tracking filter's
-  /// do) or with Embree, so that the parts' ranges do not depend on how the set is cut. A
-  /// table neither tiled nor certified does nothing in prepare, and cast_prepared is cast.
+  /// in. An untiled table does nothing in prepare, and cast_prepared is cast.
   void prepare(const RayBatch& batch) const;
   void cast_prepared(const RayBatch& batch, std::span<float> ranges) const;
   /// Same contract as RayCaster::cast_one.
