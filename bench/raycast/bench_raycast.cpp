@@ -1,10 +1,8 @@
 // Rays per second for the Embree caster (16-ray packets and single rays) and the range table
 // against the exact grid walk, on the Intel and Willow maps, for tracking-like and global
 // particle sets, on 1 and 2 threads; and the range table's build time on Intel and on a
-// generated 4000 x 4000 map; and the Embree caster's prepared casts, which cast a settled
-// cloud's rays in bundles, beside its plain casts. Run: build-raycast/bench/raycast/bench_raycast
-// Arguments of every case: map (0 Intel, 1 Willow), particles (0 tracking, 1 global, 2 settled),
-// threads.
+// generated 4000 x 4000 map. Run: build/bench/raycast/bench_raycast
+// Arguments of every case: map (0 Intel, 1 Willow), particles (0 tracking, 1 global), threads.
 
 #include <benchmark/benchmark.h>
 #include <oneapi/tbb/parallel_for.h>
@@ -39,16 +37,14 @@ const char* map_path(int map) {
 }
 
 /// Particle columns and beam angles for one scenario: tracking (a 0.3 m, 0.2 rad cloud around
-/// one free pose: coherent rays), global (uniform over free space: incoherent rays) or settled
-/// (a 0.05 m, 0.02 rad cloud, as a tracking filter's particles once it has converged).
+/// one free pose: coherent rays) or global (uniform over free space: incoherent rays).
 struct Workload {
   std::vector<float> x, y, theta, beams;
   std::vector<float> ranges;
 
-  Workload(const mote::OccupancyGrid& grid, int kind) {
-    const bool global = kind == 1;
-    const double spread = kind == 2 ? 0.05 : 0.3;
-    const double turn = kind == 2 ? 0.02 : 0.2;
+  Workload(const mote::OccupancyGrid& grid, bool global) {
+    const double spread = 0.3;
+    const double turn = 0.2;
     std::mt19937_64 rng(42);
     std::uniform_real_distribution<> u(0.0, 1.0);
     std::normal_distribution<> n(0.0, 1.0);
@@ -125,7 +121,7 @@ void run_cast(benchmark::State& state, const mote::RayCastOptions& options) {
     return;
   }
   const Caster caster(*grid, options);
-  Workload work(*grid, static_cast<int>(state.range(1)));
+  Workload work(*grid, state.range(1) != 0);
   const mote::RayBatch batch = work.batch();
   tbb::task_arena arena(static_cast<int>(state.range(2)));
   for (auto _ : state) {
@@ -133,7 +129,7 @@ void run_cast(benchmark::State& state, const mote::RayCastOptions& options) {
     benchmark::DoNotOptimize(work.ranges.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(work.ranges.size()));
-  const char* kinds[] = {" tracking", " global", " settled"};
+  const char* kinds[] = {" tracking", " global"};
   state.SetLabel(std::string(state.range(0) == 0 ? "intel" : "willow") + kinds[state.range(1)]);
 }
 
@@ -145,22 +141,6 @@ void BM_RayCast_Embree1(benchmark::State& state) {
   mote::RayCastOptions options;
   options.packets = false;
   run_cast<mote::RayCaster>(state, options);
-}
-
-/// The Embree caster as the beam model calls it: prepare() on the set, then cast_prepared(),
-/// which casts every ray in bundles when the sensors gather (a settled cloud), else as cast().
-struct PreparedCaster {
-  mote::RayCaster caster;
-  PreparedCaster(const mote::OccupancyGrid& grid, const mote::RayCastOptions& options)
-      : caster(grid, options) {}
-  void cast(const mote::RayBatch& batch, std::span<float> ranges) const {
-    caster.prepare(batch);
-    caster.cast_prepared(batch, ranges);
-  }
-};
-
-void BM_RayCast_EmbreePrepared(benchmark::State& state) {
-  run_cast<PreparedCaster>(state, mote::RayCastOptions{});
 }
 
 /// The baseline: the exact grid walk (test oracle).
@@ -244,22 +224,12 @@ void cases(benchmark::internal::Benchmark* b) {
   b->UseRealTime()->Unit(benchmark::kMillisecond);
 }
 
-/// The exact casters on a settled cloud, where prepared casts go to bundles.
-void settled_cases(benchmark::internal::Benchmark* b) {
-  b->ArgNames({"map", "global", "threads"});
-  for (const int map : {0, 1}) {
-    for (const int threads : {1, 2}) b->Args({map, 2, threads});
-  }
-  b->UseRealTime()->Unit(benchmark::kMillisecond);
-}
-
 }  // namespace
 
 BENCHMARK(BM_Machine_ComputeLoop)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RayCast_Embree16)->Apply(cases)->Apply(settled_cases);
-BENCHMARK(BM_RayCast_EmbreePrepared)->Apply(cases)->Apply(settled_cases);
+BENCHMARK(BM_RayCast_Embree16)->Apply(cases);
 BENCHMARK(BM_RayCast_Embree1)->Apply(cases);
-BENCHMARK(BM_RayCast_GridWalk)->Apply(cases)->Apply(settled_cases);
+BENCHMARK(BM_RayCast_GridWalk)->Apply(cases);
 BENCHMARK(BM_RayCast_Table)->Apply(cases);
 BENCHMARK(BM_RangeTable_Build)
     ->ArgNames({"map", "threads"})
