@@ -24,18 +24,6 @@ void BeamModel::expected_ranges(const RayBatch& batch, std::span<float> ranges) 
   }
 }
 
-void BeamModel::prepare(const BeamSet& beams, const ParticleView& particles) const {
-  // A tiled table builds the tiles the particles need; exact casting needs nothing.
-  if (table_ == std::nullopt) return;
-  const RayBatch batch{.x = {particles.x, particles.count},
-                       .y = {particles.y, particles.count},
-                       .theta = {particles.theta, particles.count},
-                       .beam_angles = beams.angle,
-                       .sensor_offset = beams.sensor_pose,
-                       .max_range = beams.range_max};
-  table_->prepare(batch);
-}
-
 void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
                       std::size_t end) const {
   const std::size_t count = end - begin;
@@ -50,11 +38,7 @@ void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::
                        .beam_angles = beams.angle,
                        .sensor_offset = beams.sensor_pose,
                        .max_range = beams.range_max};
-  if (table_) {
-    table_->cast_prepared(batch, expected);  // prepare() built the tiles, if any
-  } else {
-    exact_->cast(batch, expected);
-  }
+  expected_ranges(batch, expected);
 
   add_beam_log_likelihoods(beams.range, beams.range_max, expected, params_,
                            {particles.logw + begin, count});

@@ -150,7 +150,6 @@ const std::vector<Key>& keys() {
             &LocalizerConfig::ray_casting),
         field<int>("range_table_angles", kInt, &LocalizerConfig::range_table_angles),
         field<double>("range_table_budget_mb", kNum, &LocalizerConfig::range_table_budget_mb),
-        field<bool>("range_table_tiles", kBool, &LocalizerConfig::range_table_tiles),
         field<int>("threads", kInt, &LocalizerConfig::threads),
         field<std::uint64_t>("seed", kInt, &LocalizerConfig::seed),
         field<std::size_t>("grain", kInt, &LocalizerConfig::grain),

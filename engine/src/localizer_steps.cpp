@@ -39,8 +39,7 @@ SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
     if (c.ray_casting != RayCasting::kExact) {
       table = RangeTableOptions{
           .angles = c.range_table_angles,
-          .memory_budget_bytes = static_cast<std::size_t>(c.range_table_budget_mb * 1048576.0),
-          .tiles = c.range_table_tiles};
+          .memory_budget_bytes = static_cast<std::size_t>(c.range_table_budget_mb * 1048576.0)};
     }
     return SensorVariant(std::in_place_type<BeamModel>, grid,
                          BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays}, table);

@@ -60,7 +60,6 @@ namespace {
   X(ray_casting) \
   X(range_table_angles) \
   X(range_table_budget_mb) \
-  X(range_table_tiles) \
   X(unmapped_obstacle_filter) \
   X(threads) \
   X(seed) \

@@ -29,14 +29,4 @@ HugeArray<T> allocate_huge(std::size_t n) {
   return HugeArray<T>(static_cast<T*>(allocate_huge_bytes(n * sizeof(T))));
 }
 
-/// Reserves `bytes` of address space (2 MB aligned, advised for huge pages) without committing
-/// memory: pages are backed when first written. nullptr where that is not possible (not Linux,
-/// or the system refuses the reservation).
-[[nodiscard]] void* reserve_address_space(std::size_t bytes) noexcept;
-/// Returns a reservation made by reserve_address_space (nullptr: nothing).
-void release_address_space(void* p, std::size_t bytes) noexcept;
-/// Gives back the memory behind the whole pages of [p, p + bytes) of a reservation; they read
-/// as zero when touched again.
-void discard_pages(void* p, std::size_t bytes) noexcept;
-
 }  // namespace mote::detail

@@ -14,8 +14,8 @@
 #include "range_table_impl.hpp"
 #include "range_table_sweep.hpp"
 
-// The range table's build: the lattice or the tiles, and the directional sweep (its queries are
-// in range_table_query.cpp).
+// The range table's build: the lattice and the directional sweep (its queries are in
+// range_table_query.cpp).
 namespace mote {
 
 namespace {
@@ -101,92 +101,24 @@ void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const floa
   });
 }
 
-void RangeTable::Impl::build_tile(std::size_t tile) const {
-  const detail::CellMask m = mask();
-  constexpr int kEdge = detail::TileSet::kCells;
-  const int i0 = tiles->first_i(tile);
-  const int j0 = tiles->first_j(tile);
-  const int w = std::min(i0 + kEdge, width) - i0;
-  const int h = std::min(j0 + kEdge, height) - j0;
-  std::vector<std::uint8_t> cells;  // the tile's blocking cells, for its own lattice
-  for (int j = j0; j < j0 + h; ++j) {
-    for (int i = i0; i < i0 + w; ++i) cells.push_back(m.blocks(i, j) ? 1 : 0);
-  }
-  const detail::TableLayout local =
-      detail::make_layout({w, h, m.resolution, cells.data()}, /*lattice=*/1);
-  std::vector<float> px;
-  std::vector<float> py;
-  for (const std::uint32_t cell : local.cell_of_slot) {
-    // The whole table's lattice point of this cell (make_layout on a lattice of 1).
-    px.push_back(static_cast<float>(i0 + static_cast<int>(cell % std::uint32_t(w))) + 0.5F);
-    py.push_back(static_cast<float>(j0 + static_cast<int>(cell / std::uint32_t(w))) + 0.5F);
-  }
-  const auto angles = static_cast<std::size_t>(options.angles);
-  const auto rows = detail::allocate_huge<std::uint16_t>(px.size() * angles);
-  fill_rows(m, px, py, 1, rows.get());
-  for (std::size_t p = 0; p < px.size(); ++p) {
-    const auto i = static_cast<int>(px[p]);
-    const auto j = static_cast<int>(py[p]);
-    std::copy_n(rows.get() + p * angles, angles, ranges + std::size_t{tiles->slot(i, j)} * angles);
-  }
-}
-
-bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
-  // Rays from sensors whose tiles the budget cannot hold are cast exactly: the scene is needed.
-  walls = std::make_unique<detail::WallScene>(m);
-  constexpr std::size_t kTileCells = std::size_t{detail::TileSet::kCells} * detail::TileSet::kCells;
-  const std::size_t tile_bytes =
-      kTileCells * static_cast<std::size_t>(options.angles) * sizeof(std::uint16_t);
-  const std::size_t tile_count = detail::TileSet::count_for(width, height);
-  const std::size_t fixed =
-      blocking.size() + walls->bytes() + tile_count * detail::TileSet::kBookkeepingBytes;
-  // A sensor's 3 x 3 candidate cells can span 4 tiles; fewer resident tiles would thrash.
-  constexpr std::size_t kMinResident = 4;
-  if (fixed + kMinResident * tile_bytes <= options.memory_budget_bytes) {
-    tiles = detail::TileSet::reserve(width, height, options.angles,
-                                     (options.memory_budget_bytes - fixed) / tile_bytes);
-  }
-  if (!tiles) {
-    walls.reset();
-    return false;
-  }
-  ranges = tiles->ranges();
-  stats.tile_cells = detail::TileSet::kCells;
-  stats.max_resident_tiles = tiles->max_resident();
-  stats.points = detail::count_lattice_points(m, 1);
-  stats.bytes = fixed + tiles->max_resident() * tile_bytes;
-  return true;
-}
-
 void RangeTable::Impl::build() {
   const auto start = std::chrono::steady_clock::now();
   const detail::CellMask m = mask();
   set_directions();
   stats.angles = options.angles;
   stats.units_per_cell = units_for(width, height);
-  // Tiles when the whole table on every cell is over budget.
-  const bool whole_fits =
-      detail::table_bytes(detail::count_lattice_points(m, 1), blocking.size(), blocking.size(),
-                          options.angles) <= options.memory_budget_bytes;
-  if (options.tiles && !whole_fits && build_tiled(m)) {
-    stats.build_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return;
-  }
   layout = detail::make_layout(m, choose_lattice(m, options));
   const std::size_t points = layout.points();
   for (const std::uint32_t cell : layout.cell_of_slot) {
     point_x.push_back(static_cast<float>(cell % static_cast<std::uint32_t>(width)) + 0.5F);
     point_y.push_back(static_cast<float>(cell / static_cast<std::uint32_t>(width)) + 0.5F);
   }
-  entries = points * static_cast<std::size_t>(options.angles);
   // Not zero-filled: fill_rows writes every entry, and touches the table's pages first in
   // parallel (the serial fill was 4 % of an Intel build's perf samples). On 2 MB pages, as are
   // the tasks' columns: paired runs of the Intel build, 1.13-1.16 s against 1.54-1.59 s on 4 KB
   // pages (bench_raycast, RangeTable_Build).
-  whole = detail::allocate_huge<std::uint16_t>(entries);
-  ranges = whole.get();
-  fill_rows(m, point_x, point_y, layout.lattice, ranges);
+  ranges = detail::allocate_huge<std::uint16_t>(points * static_cast<std::size_t>(options.angles));
+  fill_rows(m, point_x, point_y, layout.lattice, ranges.get());
   stats.lattice = layout.lattice;
   stats.points = points;
   stats.bytes =

@@ -6,17 +6,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <vector>
 
-#include "embree_packets.hpp"
 #include "huge_pages.hpp"
 #include "mote/raycast/range_table.hpp"
 #include "range_table_layout.hpp"
-#include "range_table_tiles.hpp"
 #include "ray_setup.hpp"
-#include "wall_scene.hpp"
 
 namespace mote {
 
@@ -64,17 +60,9 @@ struct RangeTable::Impl {
   Pose2 origin;
   RangeTableOptions options;
   std::vector<std::uint8_t> blocking;
-  /// The exact caster's scene, for the rays of sensors whose tiles are not resident (tiled
-  /// tables only).
-  std::unique_ptr<detail::WallScene> walls;
-  detail::TableLayout layout;  ///< the lattice of a whole table (empty when tiled)
-  /// Tiles built on first use, when the whole table at a lattice of every cell is over budget:
-  /// then a slot is TileSet::slot of its cell, and `ranges` is the tiles' reservation.
-  std::unique_ptr<detail::TileSet> tiles;
-  detail::HugeArray<std::uint16_t> whole;  ///< the whole table's entries, when not tiled
-  std::uint16_t* ranges = nullptr;         ///< ranges[slot * angles + a]
-  std::size_t entries = 0;                 ///< points * angles
-  std::vector<float> cos_a;                ///< direction of table angle a in the grid frame
+  detail::TableLayout layout;
+  detail::HugeArray<std::uint16_t> ranges;  ///< ranges[slot * angles + a]
+  std::vector<float> cos_a;                 ///< direction of table angle a in the grid frame
   std::vector<float> sin_a;
   std::vector<float> point_x;  ///< lattice point of each slot, in cells
   std::vector<float> point_y;
@@ -84,24 +72,14 @@ struct RangeTable::Impl {
     return {width, height, resolution, blocking.data()};
   }
   void build();
-  /// A tiled table for the budget, or false when the budget or the system will not have one.
-  bool build_tiled(const detail::CellMask& m);
   void set_directions();
   /// Sweeps every direction for the points (px, py) (cells) and writes point k's entries to row
   /// k of `out` (rows of options.angles entries).
   void fill_rows(const detail::CellMask& m, std::span<const float> px, std::span<const float> py,
                  int lattice, std::uint16_t* out) const;
-  /// Builds a tile's entries (those of its non-blocking cells).
-  void build_tile(std::size_t tile) const;
-  /// Makes resident the tiles that the on-map sensors of `rays` need (caller holds the mutex).
-  void prepare_tiles(const detail::BatchRays& rays, const detail::CellMask& m) const;
   /// The lattice points of the sensor's block and its 8 neighbours, for a sensor at grid frame
   /// point (gx, gy) m in on-map cell (i, j).
   [[nodiscard]] detail::Candidates candidates(int i, int j, double gx, double gy) const noexcept;
-  /// The same for a tiled table (a lattice of every cell): the sensor's cell and its 8
-  /// neighbours that do not block.
-  [[nodiscard]] detail::Candidates tile_candidates(int i, int j, double gx,
-                                                   double gy) const noexcept;
   /// Which entries answer for each beam of one sensor, at table angle index
   /// heading + beam_index[b] (fractional, in [0, 2 * angles)). Inlined into cast_chunk: as a
   /// call the queries ran about 5 % slower (bench_raycast, paired runs).
@@ -113,13 +91,11 @@ struct RangeTable::Impl {
   [[nodiscard]] [[gnu::always_inline]] inline float read(const detail::Choice& choice,
                                                          float max_range) const noexcept;
   [[nodiscard]] float cast_ray(const detail::GridRay& ray, double angle, float max_range) const;
-  /// Casts particles [begin, end) of a batch; the rays of sensors whose tiles are not resident
-  /// go to `exact` (queued in particle order within the chunk, so which rays share a packet
-  /// depends on the grain only: design.md 3).
+  /// Casts particles [begin, end) of a batch.
   template <class Wrap>
   void cast_chunk(const detail::BatchRays& rays, const detail::CellMask& m,
                   std::span<const double> beam_index, const Wrap& wrap, std::size_t begin,
-                  std::size_t end, std::span<float> out_ranges, detail::Packet16* exact) const;
+                  std::size_t end, std::span<float> out_ranges) const;
 };
 
 }  // namespace mote

@@ -1,18 +1,12 @@
-// The range table's queries: the lattice point and direction that answer each beam, the read,
-// and the tiles a cast needs (the build is in range_table.cpp).
-#include <oneapi/tbb/task_arena.h>
-
+// The range table's queries: the lattice point and direction that answer each beam, and the
+// read (the build is in range_table.cpp).
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <numbers>
-#include <shared_mutex>
 #include <vector>
 
-#include "embree_packets.hpp"
 #include "grid_walk.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/raycast/range_table.hpp"
@@ -53,52 +47,6 @@ Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) cons
     }
   }
   return c;
-}
-
-Candidates RangeTable::Impl::tile_candidates(int i, int j, double gx, double gy) const noexcept {
-  Candidates c;
-  c.missing.fill(kMissing);
-  const detail::CellMask m = mask();
-  const auto ox = static_cast<float>(gx / resolution);
-  const auto oy = static_cast<float>(gy / resolution);
-  std::size_t k = 1;
-  // As candidates() on a lattice of every cell: a cell's lattice point is its centre, and a
-  // blocking cell has none.
-  for (int nj = j - 1; nj <= j + 1; ++nj) {
-    for (int ni = i - 1; ni <= i + 1; ++ni) {
-      if (ni < 0 || nj < 0 || ni >= width || nj >= height || m.blocks(ni, nj)) continue;
-      const std::size_t at = ni == i && nj == j ? 0 : k++;
-      c.slot[at] = tiles->slot(ni, nj);
-      c.wx[at] = (static_cast<float>(ni) + 0.5F) - ox;
-      c.wy[at] = (static_cast<float>(nj) + 0.5F) - oy;
-      c.missing[at] = 0;
-    }
-  }
-  return c;
-}
-
-void RangeTable::Impl::prepare_tiles(const detail::BatchRays& rays,
-                                     const detail::CellMask& m) const {
-  std::vector<std::atomic<std::uint8_t>> flags(tiles->count());
-  par::for_each_chunk(
-      rays.particles(), par::kDefaultGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t p = begin; p < end; ++p) {
-          const detail::SensorFrame s = rays.sensor(p);
-          if (!s.finite || m.blocks_start(s.ox, s.oy)) continue;
-          const int i = m.cell_of(s.ox, width);
-          const int j = m.cell_of(s.oy, height);
-          if (i < 0 || j < 0 || i >= width || j >= height) continue;
-          tiles->for_each_around(i, j, [&](std::size_t t) {
-            flags[t].store(1, std::memory_order_relaxed);  // the set, not the order, matters
-          });
-        }
-      });
-  std::vector<std::uint32_t> needed;
-  for (std::size_t t = 0; t < flags.size(); ++t) {
-    if (flags[t].load(std::memory_order_relaxed) != 0)
-      needed.push_back(static_cast<std::uint32_t>(t));
-  }
-  tiles->ensure(needed, [&](std::size_t t) { build_tile(t); });
 }
 
 inline void RangeTable::Impl::choose(const Candidates& c, double heading,
@@ -171,34 +119,15 @@ float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
   const double beam = 0.0;
   BeamScratch scratch(1);
   Choice choice;
-  std::unique_lock<std::shared_mutex> lock;  // a tiled table's tiles stay until the ray is read
-  if (tiles) {
-    lock = std::unique_lock(tiles->mutex());
-    std::vector<std::uint32_t> needed;
-    tiles->for_each_around(i, j, [&](std::size_t t) { needed.push_back(std::uint32_t(t)); });
-    tbb::this_task_arena::isolate(  // as in cast(): no outer task while holding the lock
-        [&] { tiles->ensure(needed, [&](std::size_t t) { build_tile(t); }); });
-  }
-  if (!tiles || tiles->covers(i, j)) {
-    const Candidates c =
-        tiles ? tile_candidates(i, j, ray.ox, ray.oy) : candidates(i, j, ray.ox, ray.oy);
-    choose(c, a_real, {&beam, 1}, scratch, {&choice, 1});
-    return read(choice, max_range);
-  }
-  // A tile the budget could not hold: cast exactly.
-  const detail::FlushDenormals denormals_off;
-  float exact = max_range;
-  detail::Single1 query(walls->scene(), max_range, std::span<float>(&exact, 1));
-  query.add(ray, 0);
-  detail::check_embree_thread("casting a ray");
-  return exact;
+  choose(candidates(i, j, ray.ox, ray.oy), a_real, {&beam, 1}, scratch, {&choice, 1});
+  return read(choice, max_range);
 }
 
 template <class Wrap>
 void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::CellMask& m,
                                   std::span<const double> beam_index, const Wrap& wrap,
-                                  std::size_t begin, std::size_t end, std::span<float> out_ranges,
-                                  detail::Packet16* exact) const {
+                                  std::size_t begin, std::size_t end,
+                                  std::span<float> out_ranges) const {
   const std::size_t beams = rays.beams();
   const double per_rad = options.angles / (2.0 * std::numbers::pi);
   std::vector<Choice> choices(beams);
@@ -219,18 +148,15 @@ void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::C
       for (std::size_t b = 0; b < beams; ++b) {
         out[b] = detail::walk_grid(m, m.prepare(rays.ray(s, b)), rays.max_range());
       }
-    } else if (exact != nullptr && !tiles->covers(i, j)) {
-      // A tile the budget could not hold for this cast (a tiled table always passes `exact`).
-      for (std::size_t b = 0; b < beams; ++b) exact->add(rays.ray(s, b), p * beams + b);
     } else {
-      const Candidates c = tiles ? tile_candidates(i, j, s.ox, s.oy) : candidates(i, j, s.ox, s.oy);
-      choose(c, wrap(std::atan2(s.s, s.c) * per_rad), beam_index, scratch, choices);
+      choose(candidates(i, j, s.ox, s.oy), wrap(std::atan2(s.s, s.c) * per_rad), beam_index,
+             scratch, choices);
       for (std::size_t b = 0; b < beams; ++b) out[b] = read(choices[b], rays.max_range());
     }
   }
 }
 
-void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tiles mode) const {
+void RangeTable::cast(const RayBatch& batch, std::span<float> ranges) const {
   const Impl& t = *impl_;
   const detail::GridFrame frame(t.origin);
   const detail::CellMask m = t.mask();
@@ -242,62 +168,10 @@ void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tile
     return index - n * std::floor(index / n);  // into [0, n), so heading + beam stays in [0, 2n)
   };
   for (std::size_t b = 0; b < beams; ++b) beam_index[b] = wrap(batch.beam_angles[b] * per_rad);
-  const auto cast_all = [&] {
-    par::for_each_chunk(rays.particles(), t.options.particle_grain,
-                        [&](std::size_t begin, std::size_t end) {
-                          if (!t.tiles) {
-                            t.cast_chunk(rays, m, beam_index, wrap, begin, end, ranges, nullptr);
-                            return;
-                          }
-                          // Rays of sensors whose tiles are not resident, queued in particle order.
-                          const detail::FlushDenormals denormals_off;
-                          detail::Packet16 exact(t.walls->scene(), rays.max_range(), ranges);
-                          t.cast_chunk(rays, m, beam_index, wrap, begin, end, ranges, &exact);
-                          exact.flush();
-                          detail::check_embree_thread("casting rays");
-                        });
-  };
-  if (!t.tiles) {
-    cast_all();
-    return;
-  }
-  // Isolated: while this thread holds the lock and waits for its tasks, it must not take up
-  // an outer task of the caller's that casts on this table too (it would wait on itself).
-  if (mode == Tiles::kRead) {
-    const std::shared_lock lock(t.tiles->mutex());
-    tbb::this_task_arena::isolate(cast_all);
-    return;
-  }
-  // The tiles this batch needs, built before any ray is read and kept until the last one is.
-  const std::unique_lock lock(t.tiles->mutex());
-  tbb::this_task_arena::isolate([&] {
-    t.prepare_tiles(rays, m);
-    cast_all();
-  });
-}
-
-void RangeTable::cast(const RayBatch& batch, std::span<float> ranges) const {
-  cast_batch(batch, ranges, Tiles::kBuild);
-}
-
-void RangeTable::cast_prepared(const RayBatch& batch, std::span<float> ranges) const {
-  cast_batch(batch, ranges, Tiles::kRead);
-}
-
-void RangeTable::prepare(const RayBatch& batch) const {
-  const Impl& t = *impl_;
-  if (!t.tiles) return;
-  const detail::GridFrame frame(t.origin);
-  const detail::CellMask m = t.mask();
-  const detail::BatchRays rays(frame, m, batch, batch.ray_count());  // no ranges to check
-  const std::unique_lock lock(t.tiles->mutex());
-  tbb::this_task_arena::isolate([&] { t.prepare_tiles(rays, m); });
-}
-
-std::size_t RangeTable::tiles_built() const {
-  if (!impl_->tiles) return 0;
-  const std::shared_lock lock(impl_->tiles->mutex());
-  return impl_->tiles->built();
+  par::for_each_chunk(rays.particles(), t.options.particle_grain,
+                      [&](std::size_t begin, std::size_t end) {
+                        t.cast_chunk(rays, m, beam_index, wrap, begin, end, ranges);
+                      });
 }
 
 float RangeTable::cast_one(Point2 origin, double angle, float max_range) const {

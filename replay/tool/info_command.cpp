@@ -12,13 +12,11 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 9> kFlags{{
+constexpr std::array<FlagSpec, 8> kFlags{{
     {"map", "MAP.yaml", "instead of a LOG: the map, and the beam model's range table built on it"},
     {"range-table-angles", "N", "with --map: table directions, a multiple of 32 (default 512)"},
     {"range-table-budget-mb", "MB", "with --map: table memory budget (default 256)"},
     {"unknown-free", "", "with --map: unknown cells do not stop rays (default: they do)"},
-    {"range-table-no-tiles", "",
-     "with --map: over the budget, a coarser lattice instead of tiles (range_table_tiles: false)"},
     {"scan-topic", "TOPIC", "ROS bags: the LaserScan topic (default: the only one)"},
     {"odom-topic", "TOPIC", "ROS bags: the Odometry topic (default: the only one, or tf)"},
     {"odom-frame", "FRAME", "ROS bags: odometry frame when odometry comes from tf (default odom)"},
@@ -38,7 +36,6 @@ int map_info(const ParsedArgs& args) {
   const OccupancyGrid grid = load_map(path);
   RangeTableOptions options;
   options.unknown_blocks = !args.has("unknown-free");
-  options.tiles = !args.has("range-table-no-tiles");
   if (auto n = args.integer("range-table-angles", 32, 1 << 16)) {
     options.angles = static_cast<int>(*n);
   }

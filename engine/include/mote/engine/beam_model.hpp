@@ -35,12 +35,6 @@ class BeamModel {
   BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
             const std::optional<RangeTableOptions>& table = std::nullopt);
 
-  /// With a tiled range table: makes resident the tiles the particles' sensors need
-  /// (RangeTable::prepare), so weigh() on concurrent chunks only reads, and the result depends
-  /// neither on the order they run in nor on how the particles are chunked; exact casting needs
-  /// nothing. Call before weigh() from one thread.
-  void prepare(const BeamSet& beams, const ParticleView& particles) const;
-
   /// Adds tau * log p(z | x_i) to particles.logw[i] for i in [begin, end). Reentrant.
   void weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
              std::size_t end) const;

@@ -143,13 +143,9 @@ struct LocalizerConfig {
   RayCasting ray_casting = RayCasting::kExact;
   /// Range table: directions over the full circle, a positive multiple of 32.
   int range_table_angles = 512;
-  /// Range table: memory budget (MB). When the table on every cell does not fit, it is built in
-  /// tiles on first use, or on a coarser lattice when range_table_tiles is false.
+  /// Range table: memory budget (MB). When the table on every cell does not fit, it is built on
+  /// a coarser lattice (a point every 2, 3, ... cells).
   double range_table_budget_mb = 256.0;
-  /// Range table over budget: 64 x 64-cell tiles built where the particles are (every cell's
-  /// accuracy; rays from tiles the budget cannot hold are cast exactly) rather than a coarser
-  /// lattice (fast everywhere, less accurate).
-  bool range_table_tiles = true;
   /// Once the belief has settled on one place, leave out, for every particle alike, the beams
   /// that most of it finds blocked by something the map does not hold (people, a crowd, furniture):
   /// the reading ends well short of the first mapped wall along the beam (Fox et al. 1999's

@@ -22,14 +22,12 @@ struct RangeTableOptions {
   /// of 32 (one 64-byte line of entries), at least 32.
   int angles = 512;
   /// Upper bound of the table's bytes. The lattice coarsens (1, 2, 3, ... cells between lattice
-  /// points) until the table fits; ConfigError when even the coarsest lattice does not.
+  /// points) until the table fits; ConfigError when even the coarsest lattice does not. A
+  /// coarser lattice reads fewer rays within a cell of exact casting (Willow at 256 MB: lattice
+  /// 2, 86 % against 91 % on every cell) but tracked the shared logs as well (BENCHMARKS.md,
+  /// "Range table").
   std::size_t memory_budget_bytes = std::size_t{256} << 20U;
   std::size_t particle_grain = 64;  ///< as RayCastOptions::particle_grain
-  /// When the table on every cell is over budget: build it in tiles of 64 x 64 cells on first
-  /// use instead of coarsening the lattice, holding as many as the budget allows and evicting the
-  /// least recently used. Linux only; elsewhere, or when the budget holds fewer than 4 tiles, the
-  /// lattice coarsens.
-  bool tiles = true;
 };
 
 /// What the table cost and how it is laid out.
@@ -40,11 +38,6 @@ struct RangeTableStats {
   std::size_t bytes = 0;        ///< everything the table holds: ranges, index, blocking mask
   double build_seconds = 0.0;   ///< wall clock of the sweep
   double units_per_cell = 8.0;  ///< fixed-point range units per cell
-  /// 0: the whole table is built. Otherwise tiles of this many cells a side are built on first
-  /// use (a lattice of every cell), at most max_resident_tiles at once; `bytes` counts them all
-  /// and build_seconds the part built up front.
-  int tile_cells = 0;
-  std::size_t max_resident_tiles = 0;
 };
 
 /// A ray caster answering from the table, with the RayCaster contract. A sensor inside or on the
@@ -64,28 +57,14 @@ class RangeTable {
   RangeTable(const RangeTable&) = delete;
   RangeTable& operator=(const RangeTable&) = delete;
 
-  /// Same contract as RayCaster::cast. A tiled table first builds the tiles the batch's
-  /// sensors need (evicting others when the budget is full); casts on one table then run one at
-  /// a time.
+  /// Same contract as RayCaster::cast: read only, so concurrent casts on one table are safe.
   void cast(const RayBatch& batch, std::span<float> ranges) const;
-  /// For callers that cast one set of poses in concurrent parts (the beam model weighs
-  /// particles in chunks on several threads): prepare(all of them) from one thread, then
-  /// cast_prepared(each part) from any, which reads the table without building or evicting
-  /// (rays of sensors whose tiles are not resident are cast exactly) and runs concurrently.
-  /// Which tiles are resident then depends on the whole set, not on the order the parts run
-  /// in. An untiled table does nothing in prepare, and cast_prepared is cast.
-  void prepare(const RayBatch& batch) const;
-  void cast_prepared(const RayBatch& batch, std::span<float> ranges) const;
   /// Same contract as RayCaster::cast_one.
   [[nodiscard]] float cast_one(Point2 origin, double angle, float max_range) const;
 
   [[nodiscard]] const RangeTableStats& stats() const noexcept;
-  /// How many tiles casts have built so far (0 when the whole table is built up front).
-  [[nodiscard]] std::size_t tiles_built() const;
 
  private:
-  enum class Tiles { kBuild, kRead };
-  void cast_batch(const RayBatch& batch, std::span<float> ranges, Tiles mode) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

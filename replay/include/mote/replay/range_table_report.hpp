@@ -20,9 +20,6 @@ struct RangeTableSummary {
   RangeTableStats stats;
   RangeTableAccuracy accuracy;
   bool unknown_blocks = true;
-  /// Tiled tables: tile builds by the updates of a replay (a tile evicted and built again counts
-  /// twice; the accuracy check's builds are not counted, the tiles it left resident are reused).
-  std::size_t tiles_built_by_updates = 0;
 };
 
 /// Measures `table` against an Embree caster of the same grid (kRangeTableCheckRays rays of at
