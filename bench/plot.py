@@ -175,9 +175,9 @@ def ray_casting_cases(path):
 
 
 def ray_casting_rows(found):
-    """Exact casting against the range table and its certified form, with issue 19's targets;
-    the table's accuracy is not measured here (BENCHMARKS.md, "Range table")."""
-    modes = ("exact", "table", "table_certified")
+    """Exact casting against the range table, with issue 19's targets; the table's accuracy is
+    not measured here (BENCHMARKS.md, "Range table")."""
+    modes = ("exact", "table")
     lines = ["| particles | " + " | ".join(f"{m}: rays/s" for m in modes) + " | issue 19 target |",
              "|--:|" + "--:|" * len(modes) + "---|"]
     for n in sorted({k[0] for k in found}):
@@ -271,7 +271,7 @@ def write_table(path, context, cases, machine, medians, results, ray_casting):
         text += ["", "## ns per particle per phase (tracking, 60 beams, 2 threads)", ""] + phases
     if ray_casting:
         text += ["", "## Beam model: exact casting against the range table (tracking, 60 beams, "
-                 "2 threads)", "", "Accuracy against exact casting, plain and certified: "
+                 "2 threads)", "", "Accuracy against exact casting: "
                  "BENCHMARKS.md, \"Range table\".", ""]
         text += ray_casting_rows(ray_casting)
     path.write_text("\n".join(text) + "\n")

@@ -215,7 +215,7 @@ int main(int argc, char** argv) {
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }
-  // The beam model with exact casting beside the range table and the certified table (issue 19).
+  // The beam model with exact casting beside the range table (issue 19).
   for (const mote::bench::Case& c : mote::bench::range_table_cases()) {
     const std::string name =
         c.name() + (c.ray_casting == mote::RayCasting::kExact ? "/ray_casting:exact" : "");

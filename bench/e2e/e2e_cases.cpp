@@ -64,8 +64,7 @@ std::vector<Case> nav2_baseline_cases() {
 std::vector<Case> range_table_cases() {
   std::vector<Case> cases;
   for (const int particles : {10'000, 100'000}) {
-    for (const RayCasting source :
-         {RayCasting::kExact, RayCasting::kTable, RayCasting::kTableCertified}) {
+    for (const RayCasting source : {RayCasting::kExact, RayCasting::kTable}) {
       Case c{LaserModel::kBeam, Setting::kTracking, particles, 60, 2};
       c.ray_casting = source;
       cases.push_back(c);

@@ -30,14 +30,13 @@ struct Case {
   /// 0: the particle count is fixed at `particles` (KLD cannot change it). Otherwise
   /// KLD-adaptive: min_particles = kld_min, max_particles = particles.
   int kld_min = 0;
-  /// Beam model only: where the expected ranges come from (exact Embree casting, the range
-  /// table, or the certified table).
+  /// Beam model only: where the expected ranges come from (exact Embree casting or the range
+  /// table).
   RayCasting ray_casting = RayCasting::kExact;
 
   /// "BM_Localizer_Update/<model>/<setting>/n:<particles>/beams:<beams>/threads:<threads>",
   /// with "/defaults:nav2" appended for the nav2 baseline and "/kld_min:<kld_min>" for the
-  /// KLD-adaptive cases (n is then max_particles) and "/ray_casting:table" or
-  /// "/ray_casting:table_certified" for the tables.
+  /// KLD-adaptive cases (n is then max_particles) and "/ray_casting:table" for the table.
   [[nodiscard]] std::string name() const;
 };
 

@@ -1,15 +1,12 @@
 // Rays per second for the Embree caster (16-ray packets and single rays) and the range table
 // against the exact grid walk, on the Intel and Willow maps, for tracking-like and global
 // particle sets, on 1 and 2 threads; and the range table's build time on Intel and on a
-// generated 4000 x 4000 map; and the Embree caster's prepared casts, which cast a settled
-// cloud's rays in bundles, beside its plain casts. Run: build-raycast/bench/raycast/bench_raycast
-// Arguments of every case: map (0 Intel, 1 Willow), particles (0 tracking, 1 global, 2 settled),
-// threads.
+// generated 4000 x 4000 map. Run: build/bench/raycast/bench_raycast
+// Arguments of every case: map (0 Intel, 1 Willow), particles (0 tracking, 1 global), threads.
 
 #include <benchmark/benchmark.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
-#include <chrono>
 
 #include <algorithm>
 #include <chrono>
@@ -19,7 +16,6 @@
 #include <numbers>
 #include <random>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "mote/maps/map_loader.hpp"
@@ -40,16 +36,14 @@ const char* map_path(int map) {
 }
 
 /// Particle columns and beam angles for one scenario: tracking (a 0.3 m, 0.2 rad cloud around
-/// one free pose: coherent rays), global (uniform over free space: incoherent rays) or settled
-/// (a 0.05 m, 0.02 rad cloud, as a tracking filter's particles once it has converged).
+/// one free pose: coherent rays) or global (uniform over free space: incoherent rays).
 struct Workload {
   std::vector<float> x, y, theta, beams;
   std::vector<float> ranges;
 
-  Workload(const mote::OccupancyGrid& grid, int kind) {
-    const bool global = kind == 1;
-    const double spread = kind == 2 ? 0.05 : 0.3;
-    const double turn = kind == 2 ? 0.02 : 0.2;
+  Workload(const mote::OccupancyGrid& grid, bool global) {
+    const double spread = 0.3;
+    const double turn = 0.2;
     std::mt19937_64 rng(42);
     std::uniform_real_distribution<> u(0.0, 1.0);
     std::normal_distribution<> n(0.0, 1.0);
@@ -93,33 +87,24 @@ const mote::OccupancyGrid* grid_for(int map) {
 /// random rooms and walls.
 mote::OccupancyGrid big_grid() { return mote::load_map(mote::bench::write_office_map(4000)); }
 
-/// How a table answers: every ray from its entry, rays of uncertified entries exactly, or every
-/// ray confirmed on the map (RangeTableOptions::certify, ::confirm).
-enum class TableMode { kPlain, kCertified, kConfirmed };
-
-mote::RangeTableOptions options_for(TableMode mode) {
-  return {.certify = mode == TableMode::kCertified, .confirm = mode == TableMode::kConfirmed};
-}
-
 /// The range table of a map, built once per process (default options: 512 angles, 256 MB).
-const mote::RangeTable* table_for(int map, TableMode mode) {
-  static std::map<std::pair<int, TableMode>, std::unique_ptr<mote::RangeTable>> cache;
-  auto& slot = cache[{map, mode}];
+const mote::RangeTable* table_for(int map) {
+  static std::map<int, std::unique_ptr<mote::RangeTable>> cache;
+  auto& slot = cache[map];
   if (!slot) {
     const mote::OccupancyGrid* grid = grid_for(map);
     if (grid == nullptr) return nullptr;
-    slot = std::make_unique<mote::RangeTable>(*grid, options_for(mode));
+    slot = std::make_unique<mote::RangeTable>(*grid);
   }
   return slot.get();
 }
 
 /// The range table, built once per map outside the timed loop.
-template <TableMode kMode>
 struct TableCaster {
   const mote::RangeTable* table;
   TableCaster(const mote::OccupancyGrid& grid, const mote::RayCastOptions&) {
     for (int map : {0, 1}) {
-      if (grid_for(map) == &grid) table = table_for(map, kMode);
+      if (grid_for(map) == &grid) table = table_for(map);
     }
   }
   void cast(const mote::RayBatch& batch, std::span<float> ranges) const {
@@ -135,7 +120,7 @@ void run_cast(benchmark::State& state, const mote::RayCastOptions& options) {
     return;
   }
   const Caster caster(*grid, options);
-  Workload work(*grid, static_cast<int>(state.range(1)));
+  Workload work(*grid, state.range(1) != 0);
   const mote::RayBatch batch = work.batch();
   tbb::task_arena arena(static_cast<int>(state.range(2)));
   for (auto _ : state) {
@@ -143,7 +128,7 @@ void run_cast(benchmark::State& state, const mote::RayCastOptions& options) {
     benchmark::DoNotOptimize(work.ranges.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(work.ranges.size()));
-  const char* kinds[] = {" tracking", " global", " settled"};
+  const char* kinds[] = {" tracking", " global"};
   state.SetLabel(std::string(state.range(0) == 0 ? "intel" : "willow") + kinds[state.range(1)]);
 }
 
@@ -157,51 +142,22 @@ void BM_RayCast_Embree1(benchmark::State& state) {
   run_cast<mote::RayCaster>(state, options);
 }
 
-/// The Embree caster as the beam model calls it: prepare() on the set, then cast_prepared(),
-/// which casts every ray in bundles when the sensors gather (a settled cloud), else as cast().
-struct PreparedCaster {
-  mote::RayCaster caster;
-  PreparedCaster(const mote::OccupancyGrid& grid, const mote::RayCastOptions& options)
-      : caster(grid, options) {}
-  void cast(const mote::RayBatch& batch, std::span<float> ranges) const {
-    caster.prepare(batch);
-    caster.cast_prepared(batch, ranges);
-  }
-};
-
-void BM_RayCast_EmbreePrepared(benchmark::State& state) {
-  run_cast<PreparedCaster>(state, mote::RayCastOptions{});
-}
-
 /// The baseline: the exact grid walk (test oracle).
 void BM_RayCast_GridWalk(benchmark::State& state) {
   run_cast<mote::GridRayCaster>(state, mote::RayCastOptions{});
 }
 
 void BM_RayCast_Table(benchmark::State& state) {
-  run_cast<TableCaster<TableMode::kPlain>>(state, mote::RayCastOptions{});
+  run_cast<TableCaster>(state, mote::RayCastOptions{});
 }
 
-/// The certified table: rays of uncertified entries are cast with Embree.
-void BM_RayCast_TableCertified(benchmark::State& state) {
-  run_cast<TableCaster<TableMode::kCertified>>(state, mote::RayCastOptions{});
-}
-
-/// The confirmed table: every ray's range confirmed on the map, the unconfirmed cast with Embree.
-void BM_RayCast_TableConfirmed(benchmark::State& state) {
-  run_cast<TableCaster<TableMode::kConfirmed>>(state, mote::RayCastOptions{});
-}
-
-/// Table build time with the default options (512 angles, 256 MB budget): map 0 Intel,
-/// 2 the generated 4000 x 4000 map, which is over budget: tiles built on first use (the
-/// time is then the part built up front), or with certification a coarser lattice. Counters:
-/// the table's size and layout, and (untimed, after the builds) its accuracy against Embree on
-/// 20000 rays from free cells up to 30 m (of 8 tiles when tiled), which on a coarse lattice is
-/// not what test_range_table measures on every cell; tile_ms is the time per tile of the tiles
-/// that check built.
+/// Table build time with the default options (512 angles, 256 MB budget): map 0 Intel (every
+/// cell), 1 Willow and 2 the generated 4000 x 4000 map, both over budget on every cell, so on a
+/// coarser lattice. Counters: the table's size and layout, and (untimed, after the builds) its
+/// accuracy against Embree on 20000 rays from free cells up to 30 m, which on a coarse lattice
+/// is not what test_range_table measures on every cell.
 void BM_RangeTable_Build(benchmark::State& state) {
   const int map = static_cast<int>(state.range(0));
-  const auto mode = static_cast<TableMode>(state.range(2));
   static const mote::OccupancyGrid big = big_grid();
   const mote::OccupancyGrid* grid = map == 2 ? &big : grid_for(map);
   if (grid == nullptr) {
@@ -212,27 +168,17 @@ void BM_RangeTable_Build(benchmark::State& state) {
   std::unique_ptr<mote::RangeTable> table;
   for (auto _ : state) {
     table.reset();
-    arena.execute([&] { table = std::make_unique<mote::RangeTable>(*grid, options_for(mode)); });
+    arena.execute([&] { table = std::make_unique<mote::RangeTable>(*grid); });
   }
   const mote::RangeTableStats& stats = table->stats();
   const mote::RayCaster exact(*grid);
-  const auto check_start = std::chrono::steady_clock::now();
   mote::RangeTableAccuracy acc;
   arena.execute([&] { acc = mote::measure_range_table(*table, exact, *grid, 20000, 30.0F); });
-  if (table->tiles_built() > 0) {
-    // The check casts 20000 rays exactly too, a few ms: the tiles' builds dominate.
-    state.counters["tile_ms"] =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - check_start)
-            .count() /
-        static_cast<double>(table->tiles_built());
-  }
-  state.counters["tiles_resident"] = static_cast<double>(stats.max_resident_tiles);
   state.counters["within_1_cell"] = acc.within_one_cell;
   state.counters["within_2_cells"] = acc.within_two_cells;
   state.counters["MB"] = static_cast<double>(stats.bytes) / 1048576.0;
   state.counters["lattice"] = stats.lattice;
   state.counters["angles"] = stats.angles;
-  state.counters["uncertified"] = stats.uncertified;
   state.SetLabel(map == 0 ? "intel" : map == 1 ? "willow" : "4000x4000");
 }
 
@@ -266,33 +212,18 @@ void cases(benchmark::internal::Benchmark* b) {
   b->UseRealTime()->Unit(benchmark::kMillisecond);
 }
 
-/// The exact casters on a settled cloud, where prepared casts go to bundles.
-void settled_cases(benchmark::internal::Benchmark* b) {
-  b->ArgNames({"map", "global", "threads"});
-  for (const int map : {0, 1}) {
-    for (const int threads : {1, 2}) b->Args({map, 2, threads});
-  }
-  b->UseRealTime()->Unit(benchmark::kMillisecond);
-}
-
 }  // namespace
 
 BENCHMARK(BM_Machine_ComputeLoop)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RayCast_Embree16)->Apply(cases)->Apply(settled_cases);
-BENCHMARK(BM_RayCast_EmbreePrepared)->Apply(cases)->Apply(settled_cases);
+BENCHMARK(BM_RayCast_Embree16)->Apply(cases);
 BENCHMARK(BM_RayCast_Embree1)->Apply(cases);
-BENCHMARK(BM_RayCast_GridWalk)->Apply(cases)->Apply(settled_cases);
+BENCHMARK(BM_RayCast_GridWalk)->Apply(cases);
 BENCHMARK(BM_RayCast_Table)->Apply(cases);
-BENCHMARK(BM_RayCast_TableCertified)->Apply(cases);
-BENCHMARK(BM_RayCast_TableConfirmed)->Apply(cases);
 BENCHMARK(BM_RangeTable_Build)
-    ->ArgNames({"map", "threads", "mode"})  // mode: 0 plain, 1 certified, 2 confirmed
-    ->Args({0, 2, 0})
-    ->Args({2, 2, 0})
-    ->Args({0, 2, 1})
-    ->Args({2, 2, 1})
-    ->Args({0, 2, 2})
-    ->Args({2, 2, 2})
+    ->ArgNames({"map", "threads"})
+    ->Args({0, 2})
+    ->Args({1, 2})
+    ->Args({2, 2})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);

@@ -24,22 +24,6 @@ void BeamModel::expected_ranges(const RayBatch& batch, std::span<float> ranges) 
   }
 }
 
-void BeamModel::prepare(const BeamSet& beams, const ParticleView& particles) const {
-  // The table builds tiles, or chooses how to cast uncertified rays; either caster chooses
-  // whether the set's sensors gather enough to cast in bundles.
-  const RayBatch batch{.x = {particles.x, particles.count},
-                       .y = {particles.y, particles.count},
-                       .theta = {particles.theta, particles.count},
-                       .beam_angles = beams.angle,
-                       .sensor_offset = beams.sensor_pose,
-                       .max_range = beams.range_max};
-  if (table_) {
-    table_->prepare(batch);
-  } else {
-    exact_->prepare(batch);
-  }
-}
-
 void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
                       std::size_t end) const {
   const std::size_t count = end - begin;
@@ -54,11 +38,7 @@ void BeamModel::weigh(const BeamSet& beams, const ParticleView& particles, std::
                        .beam_angles = beams.angle,
                        .sensor_offset = beams.sensor_pose,
                        .max_range = beams.range_max};
-  if (table_) {
-    table_->cast_prepared(batch, expected);  // prepare() built the tiles, if any
-  } else {
-    exact_->cast_prepared(batch, expected);
-  }
+  expected_ranges(batch, expected);
 
   add_beam_log_likelihoods(beams.range, beams.range_max, expected, params_,
                            {particles.logw + begin, count});

@@ -139,21 +139,18 @@ const std::vector<Key>& keys() {
         field<bool>("relocalize_when_lost", kBool, &LocalizerConfig::relocalize_when_lost),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
         enum_key(
-            "ray_casting", "exact, table or table_certified",
+            "ray_casting", "exact or table",
             [](LocalizerConfig& c, const std::string& s) {
               if (s == "exact")
                 c.ray_casting = RayCasting::kExact;
               else if (s == "table")
                 c.ray_casting = RayCasting::kTable;
-              else if (s == "table_certified")
-                c.ray_casting = RayCasting::kTableCertified;
               else
                 throw YAML::BadConversion(YAML::Mark::null_mark());
             },
             &LocalizerConfig::ray_casting),
         field<int>("range_table_angles", kInt, &LocalizerConfig::range_table_angles),
         field<double>("range_table_budget_mb", kNum, &LocalizerConfig::range_table_budget_mb),
-        field<bool>("range_table_tiles", kBool, &LocalizerConfig::range_table_tiles),
         field<int>("threads", kInt, &LocalizerConfig::threads),
         field<std::uint64_t>("seed", kInt, &LocalizerConfig::seed),
         field<std::size_t>("grain", kInt, &LocalizerConfig::grain),
@@ -351,8 +348,6 @@ const char* name_of(RayCasting m) {
   switch (m) {
     case RayCasting::kTable:
       return "table";
-    case RayCasting::kTableCertified:
-      return "table_certified";
     case RayCasting::kExact:
       break;
   }

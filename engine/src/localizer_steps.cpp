@@ -41,9 +41,7 @@ SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
     if (c.ray_casting != RayCasting::kExact) {
       table = RangeTableOptions{
           .angles = c.range_table_angles,
-          .memory_budget_bytes = static_cast<std::size_t>(c.range_table_budget_mb * 1048576.0),
-          .certify = c.ray_casting == RayCasting::kTableCertified,
-          .tiles = c.range_table_tiles};
+          .memory_budget_bytes = static_cast<std::size_t>(c.range_table_budget_mb * 1048576.0)};
     }
     return SensorVariant(
         std::in_place_type<BeamModel>, grid,

@@ -61,7 +61,6 @@ namespace {
   X(ray_casting) \
   X(range_table_angles) \
   X(range_table_budget_mb) \
-  X(range_table_tiles) \
   X(unmapped_obstacle_filter) \
   X(threads) \
   X(seed) \
@@ -94,8 +93,7 @@ void bind_enums(py::module_& m) {
       .value("ACKERMANN", OdomModel::kAckermann);
   py::enum_<RayCasting>(m, "RayCasting", "Where the beam model's expected ranges come from.")
       .value("EXACT", RayCasting::kExact)
-      .value("TABLE", RayCasting::kTable)
-      .value("TABLE_CERTIFIED", RayCasting::kTableCertified);
+      .value("TABLE", RayCasting::kTable);
 }
 
 std::string config_repr(const LocalizerConfig& c) {

@@ -21,22 +21,12 @@ using HugeArray = std::unique_ptr<T[], FreeDeleter>;
 void* allocate_huge_bytes(std::size_t bytes);
 
 /// n uninitialized values. Why: first touching the Intel table's 190 MB in 4 KB pages was 11 %
-/// of its certified build's perf samples (the page-fault path of a virtual machine); 2 MB pages
-/// take 512 times fewer faults.
+/// of a build's perf samples (the page-fault path of a virtual machine); 2 MB pages take 512
+/// times fewer faults.
 template <class T>
 HugeArray<T> allocate_huge(std::size_t n) {
   static_assert(std::is_trivial_v<T>);
   return HugeArray<T>(static_cast<T*>(allocate_huge_bytes(n * sizeof(T))));
 }
-
-/// Reserves `bytes` of address space (2 MB aligned, advised for huge pages) without committing
-/// memory: pages are backed when first written. nullptr where that is not possible (not Linux,
-/// or the system refuses the reservation).
-[[nodiscard]] void* reserve_address_space(std::size_t bytes) noexcept;
-/// Returns a reservation made by reserve_address_space (nullptr: nothing).
-void release_address_space(void* p, std::size_t bytes) noexcept;
-/// Gives back the memory behind the whole pages of [p, p + bytes) of a reservation; they read
-/// as zero when touched again.
-void discard_pages(void* p, std::size_t bytes) noexcept;
 
 }  // namespace mote::detail

@@ -11,12 +11,11 @@
 #include "huge_pages.hpp"
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
-#include "range_table_certify.hpp"
 #include "range_table_impl.hpp"
 #include "range_table_sweep.hpp"
 
-// The range table's build: the lattice, the directional sweep and the certification (its
-// queries are in range_table_query.cpp).
+// The range table's build: the lattice and the directional sweep (its queries are in
+// range_table_query.cpp).
 namespace mote {
 
 namespace {
@@ -24,10 +23,6 @@ namespace {
 constexpr int kAngleGroup = 32;  // uint16 entries per 64-byte line: one build task's directions
 constexpr int kMaxLattice = 32;
 constexpr double kMaxUnitsPerCell = 16.0;
-/// Certified entries vouch for their rays to about this many cells (second differences and
-/// neighbour disagreements up to it): 2 was the largest that kept 99 % of the rays of the Intel,
-/// Willow and Stata basement maps within one cell of exact casting (BENCHMARKS.md).
-constexpr double kCertifyTolerance = 2.0;
 
 void check_options(const RangeTableOptions& o) {
   if (o.angles < kAngleGroup || o.angles % kAngleGroup != 0) {
@@ -40,9 +35,8 @@ std::string megabytes(std::size_t bytes) {
   return std::to_string((bytes + (std::size_t{1} << 20U) - 1) >> 20U) + " MB";
 }
 
-/// The finest lattice whose table, with `fixed` bytes beside it, fits the budget; ConfigError
-/// naming the coarsest's size.
-int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o, std::size_t fixed) {
+/// The finest lattice whose table fits the budget; ConfigError naming the coarsest's size.
+int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o) {
   std::size_t needed = 0;
   const std::size_t cells =
       static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height);
@@ -50,11 +44,11 @@ int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o, std
     const auto blocks = static_cast<std::size_t>((mask.width + lattice - 1) / lattice) *
                         static_cast<std::size_t>((mask.height + lattice - 1) / lattice);
     // Every block holding a point is an upper bound; count exactly only when it matters.
-    if (detail::table_bytes(blocks, blocks, cells, o.angles) + fixed <= o.memory_budget_bytes) {
+    if (detail::table_bytes(blocks, blocks, cells, o.angles) <= o.memory_budget_bytes) {
       return lattice;
     }
-    needed = fixed + detail::table_bytes(detail::count_lattice_points(mask, lattice), blocks, cells,
-                                         o.angles);
+    needed =
+        detail::table_bytes(detail::count_lattice_points(mask, lattice), blocks, cells, o.angles);
     if (needed <= o.memory_budget_bytes) return lattice;
   }
   throw ConfigError("range table: a memory budget of " + megabytes(o.memory_budget_bytes) +
@@ -107,127 +101,30 @@ void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const floa
   });
 }
 
-void RangeTable::Impl::build_tile(std::size_t tile) const {
-  const detail::CellMask m = mask();
-  // The tile's cells and, certified, a ring of one cell around it: certifying an entry compares
-  // its row with its 8 neighbours' rows, and some of them lie in the next tile.
-  constexpr int kEdge = detail::TileSet::kCells;
-  const int halo = options.certify ? 1 : 0;
-  const int ti = tiles->first_i(tile);
-  const int tj = tiles->first_j(tile);
-  const int i0 = std::max(ti - halo, 0);
-  const int j0 = std::max(tj - halo, 0);
-  const int w = std::min(ti + kEdge + halo, width) - i0;
-  const int h = std::min(tj + kEdge + halo, height) - j0;
-  std::vector<std::uint8_t> cells;  // the window's blocking cells, for its own lattice
-  for (int j = j0; j < j0 + h; ++j) {
-    for (int i = i0; i < i0 + w; ++i) cells.push_back(m.blocks(i, j) ? 1 : 0);
-  }
-  const detail::TableLayout window =
-      detail::make_layout({w, h, m.resolution, cells.data()}, /*lattice=*/1);
-  std::vector<float> px;
-  std::vector<float> py;
-  for (const std::uint32_t cell : window.cell_of_slot) {
-    // The whole table's lattice point of this cell (make_layout on a lattice of 1).
-    px.push_back(static_cast<float>(i0 + static_cast<int>(cell % std::uint32_t(w))) + 0.5F);
-    py.push_back(static_cast<float>(j0 + static_cast<int>(cell / std::uint32_t(w))) + 0.5F);
-  }
-  const auto angles = static_cast<std::size_t>(options.angles);
-  const auto rows = detail::allocate_huge<std::uint16_t>(px.size() * angles);
-  fill_rows(m, px, py, 1, rows.get());
-  if (options.certify) {
-    detail::certify({window, px, py, cos_a, sin_a, stats.units_per_cell, kCertifyTolerance},
-                    {rows.get(), px.size() * angles});
-  }
-  for (std::size_t p = 0; p < px.size(); ++p) {
-    const auto i = static_cast<int>(px[p]);
-    const auto j = static_cast<int>(py[p]);
-    if (i < ti || j < tj || i >= ti + kEdge || j >= tj + kEdge) continue;  // the halo
-    std::copy_n(rows.get() + p * angles, angles, ranges + std::size_t{tiles->slot(i, j)} * angles);
-  }
-}
-
-bool RangeTable::Impl::build_tiled(const detail::CellMask& m) {
-  // Rays from sensors whose tiles the budget cannot hold are cast exactly: the scene is needed.
-  if (!walls) walls = std::make_unique<detail::WallScene>(m);
-  constexpr std::size_t kTileCells = std::size_t{detail::TileSet::kCells} * detail::TileSet::kCells;
-  const std::size_t tile_bytes =
-      kTileCells * static_cast<std::size_t>(options.angles) * sizeof(std::uint16_t);
-  const std::size_t tile_count = detail::TileSet::count_for(width, height);
-  const std::size_t fixed =
-      blocking.size() + exact_bytes() + tile_count * detail::TileSet::kBookkeepingBytes;
-  // A sensor's 3 x 3 candidate cells can span 4 tiles; fewer resident tiles would thrash.
-  constexpr std::size_t kMinResident = 4;
-  if (fixed + kMinResident * tile_bytes <= options.memory_budget_bytes) {
-    tiles = detail::TileSet::reserve(width, height, options.angles,
-                                     (options.memory_budget_bytes - fixed) / tile_bytes);
-  }
-  if (!tiles) {
-    if (!casts_exactly()) walls.reset();
-    return false;
-  }
-  ranges = tiles->ranges();
-  // Slots number every tile of the map, resident or not (TileSet::slot).
-  claims_on_lanes =
-      cell_bits &&
-      detail::claims_fit_lanes(tile_count * kTileCells * static_cast<std::size_t>(options.angles),
-                               options.angles, width, height);
-  stats.tile_cells = detail::TileSet::kCells;
-  stats.max_resident_tiles = tiles->max_resident();
-  stats.points = detail::count_lattice_points(m, 1);
-  stats.bytes = fixed + tiles->max_resident() * tile_bytes;
-  return true;
-}
-
 void RangeTable::Impl::build() {
   const auto start = std::chrono::steady_clock::now();
   const detail::CellMask m = mask();
   set_directions();
   stats.angles = options.angles;
   stats.units_per_cell = units_for(width, height);
-  if (casts_exactly()) walls = std::make_unique<detail::WallScene>(m);
-  if (options.certify) bits = std::make_unique<detail::BitMask>(m);
-  if (confirms()) cell_bits = std::make_unique<detail::CellBits>(m);
-  const std::size_t scene_bytes = exact_bytes();
-  // Tiles when the whole table on every cell is over budget.
-  const bool whole_fits = detail::table_bytes(detail::count_lattice_points(m, 1), blocking.size(),
-                                              blocking.size(), options.angles) +
-                              scene_bytes <=
-                          options.memory_budget_bytes;
-  if (options.tiles && !whole_fits && build_tiled(m)) {
-    stats.build_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return;
-  }
-  layout = detail::make_layout(m, choose_lattice(m, options, scene_bytes));
+  layout = detail::make_layout(m, choose_lattice(m, options));
   const std::size_t points = layout.points();
   for (const std::uint32_t cell : layout.cell_of_slot) {
     point_x.push_back(static_cast<float>(cell % static_cast<std::uint32_t>(width)) + 0.5F);
     point_y.push_back(static_cast<float>(cell / static_cast<std::uint32_t>(width)) + 0.5F);
   }
-  entries = points * static_cast<std::size_t>(options.angles);
   // Not zero-filled: fill_rows writes every entry, and touches the table's pages first in
-  // parallel (the serial fill was 4 % of the certified Intel build's perf samples). On 2 MB
-  // pages, as are the tasks' columns: paired runs of the certified Intel build, 1.47-1.48 s
-  // against 1.98-2.03 s on 4 KB pages (bench_raycast, RangeTable_Build).
-  whole = detail::allocate_huge<std::uint16_t>(entries);
-  ranges = whole.get();
-  fill_rows(m, point_x, point_y, layout.lattice, ranges);
-  claims_on_lanes = cell_bits && detail::claims_fit_lanes(entries, options.angles, width, height);
-  const std::size_t uncertified = options.certify
-                                      ? detail::certify({layout, point_x, point_y, cos_a, sin_a,
-                                                         stats.units_per_cell, kCertifyTolerance},
-                                                        {ranges, entries})
-                                      : 0;
+  // parallel (the serial fill was 4 % of an Intel build's perf samples). On 2 MB pages, as are
+  // the tasks' columns: paired runs of the Intel build, 1.13-1.16 s against 1.54-1.59 s on 4 KB
+  // pages (bench_raycast, RangeTable_Build).
+  ranges = detail::allocate_huge<std::uint16_t>(points * static_cast<std::size_t>(options.angles));
+  fill_rows(m, point_x, point_y, layout.lattice, ranges.get());
   stats.lattice = layout.lattice;
   stats.points = points;
   stats.bytes =
-      detail::table_bytes(points, layout.slot_of_block.size(), blocking.size(), options.angles) +
-      scene_bytes;
+      detail::table_bytes(points, layout.slot_of_block.size(), blocking.size(), options.angles);
   stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  stats.uncertified =
-      points == 0 ? 0.0 : static_cast<double>(uncertified) / static_cast<double>(entries);
 }
 
 RangeTable::RangeTable(const OccupancyGrid& grid, RangeTableOptions options)

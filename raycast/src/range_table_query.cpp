@@ -1,36 +1,25 @@
-// The range table's queries: the lattice point and directions that answer each beam, the read,
-// and the rays of uncertified entries cast exactly (the build is in range_table.cpp).
-#include <oneapi/tbb/task_arena.h>
-
+// The range table's queries: the lattice point and direction that answer each beam, and the
+// read (the build is in range_table.cpp).
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <numbers>
-#include <shared_mutex>
-#include <utility>
 #include <vector>
 
-#include "embree_packets.hpp"
 #include "grid_walk.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/raycast/range_table.hpp"
 #include "range_table_angles.hpp"
-#include "range_table_confirm.hpp"
 #include "range_table_impl.hpp"
 #include "range_table_sweep.hpp"
 #include "ray_setup.hpp"
 
 namespace mote {
 
-using detail::angle_below;
 using detail::BeamScratch;
 using detail::Candidates;
 using detail::Choice;
-using detail::kCastExactly;
-using detail::kLeavesMap;
 using detail::kMissing;
 using detail::nearest_angle;
 
@@ -60,77 +49,21 @@ Candidates RangeTable::Impl::candidates(int i, int j, double gx, double gy) cons
   return c;
 }
 
-Candidates RangeTable::Impl::tile_candidates(int i, int j, double gx, double gy) const noexcept {
-  Candidates c;
-  c.missing.fill(kMissing);
-  const detail::CellMask m = mask();
-  const auto ox = static_cast<float>(gx / resolution);
-  const auto oy = static_cast<float>(gy / resolution);
-  std::size_t k = 1;
-  // As candidates() on a lattice of every cell: a cell's lattice point is its centre, and a
-  // blocking cell has none.
-  for (int nj = j - 1; nj <= j + 1; ++nj) {
-    for (int ni = i - 1; ni <= i + 1; ++ni) {
-      if (ni < 0 || nj < 0 || ni >= width || nj >= height || m.blocks(ni, nj)) continue;
-      const std::size_t at = ni == i && nj == j ? 0 : k++;
-      c.slot[at] = tiles->slot(ni, nj);
-      c.wx[at] = (static_cast<float>(ni) + 0.5F) - ox;
-      c.wy[at] = (static_cast<float>(nj) + 0.5F) - oy;
-      c.missing[at] = 0;
-    }
-  }
-  return c;
-}
-
-void RangeTable::Impl::prepare_tiles(const detail::BatchRays& rays,
-                                     const detail::CellMask& m) const {
-  std::vector<std::atomic<std::uint8_t>> flags(tiles->count());
-  par::for_each_chunk(
-      rays.particles(), par::kDefaultGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t p = begin; p < end; ++p) {
-          const detail::SensorFrame s = rays.sensor(p);
-          if (!s.finite || m.blocks_start(s.ox, s.oy)) continue;
-          const int i = m.cell_of(s.ox, width);
-          const int j = m.cell_of(s.oy, height);
-          if (i < 0 || j < 0 || i >= width || j >= height) continue;
-          tiles->for_each_around(i, j, [&](std::size_t t) {
-            flags[t].store(1, std::memory_order_relaxed);  // the set, not the order, matters
-          });
-        }
-      });
-  std::vector<std::uint32_t> needed;
-  for (std::size_t t = 0; t < flags.size(); ++t) {
-    if (flags[t].load(std::memory_order_relaxed) != 0)
-      needed.push_back(static_cast<std::uint32_t>(t));
-  }
-  tiles->ensure(needed, [&](std::size_t t) { build_tile(t); });
-}
-
 inline void RangeTable::Impl::choose(const Candidates& c, double heading,
                                      std::span<const double> beam_index, BeamScratch& scratch,
                                      std::span<Choice> choices) const noexcept {
   const std::size_t beams = beam_index.size();
   const int n = options.angles;
   std::uint32_t* angle = scratch.angle.data();
-  float* frac = scratch.frac.data();
   float* dx = scratch.dx.data();
   float* dy = scratch.dy.data();
   std::int32_t* key = scratch.key.data();
-  // Without certification the nearest direction alone answers (frac 0): interpolating across a
-  // jump between two directions gives a range neither holds (measured: 90.5 % within a cell on
-  // Intel against 91.5 %); certified entries have no jump to either neighbour.
+  // The nearest direction alone answers: interpolating between the two around the ray across a
+  // jump gives a range neither holds (measured: 90.5 % within a cell on Intel against 91.5 %).
   for (std::size_t b = 0; b < beams; ++b) {
-    if (options.certify) {
-      angle[b] = static_cast<std::uint32_t>(angle_below(heading + beam_index[b], n, frac[b]));
-    } else {
-      angle[b] = static_cast<std::uint32_t>(nearest_angle(heading + beam_index[b], n));
-      frac[b] = 0.0F;
-    }
-    // The nearer of the two table directions chooses the lattice point.
-    const std::uint32_t near =
-        frac[b] < 0.5F ? angle[b] : (angle[b] + 1 == unsigned(n) ? 0 : angle[b] + 1);
-    dx[b] = cos_a[near];
-    dy[b] = sin_a[near];
+    angle[b] = static_cast<std::uint32_t>(nearest_angle(heading + beam_index[b], n));
+    dx[b] = cos_a[angle[b]];
+    dy[b] = sin_a[angle[b]];
     key[b] = static_cast<std::int32_t>(kMissing);
   }
   // The lattice point whose ray along this direction passes closest to the sensor stands for it:
@@ -155,53 +88,21 @@ inline void RangeTable::Impl::choose(const Candidates& c, double heading,
     const std::size_t row = static_cast<std::size_t>(n);
     choices[b] = {static_cast<std::size_t>(c.slot[best]) * row + angle[b],
                   static_cast<std::size_t>(c.slot[0]) * row + angle[b],
-                  dx[b] * c.wx[best] + dy[b] * c.wy[best],
-                  dx[b] * c.wx[0] + dy[b] * c.wy[0],
-                  frac[b],
-                  angle[b] + 1 == static_cast<std::uint32_t>(n) ? 1 - n : 1};
+                  dx[b] * c.wx[best] + dy[b] * c.wy[best], dx[b] * c.wx[0] + dy[b] * c.wy[0]};
   }
-}
-
-inline float RangeTable::Impl::units_at(std::size_t entry, const Choice& choice) const noexcept {
-  const std::uint16_t raw = ranges[entry];
-  if ((raw & detail::kUncertified) != 0) return kCastExactly;
-  const auto v0 = static_cast<std::uint16_t>(raw & detail::kNoHit);
-  const auto v1 = static_cast<std::uint16_t>(
-      ranges[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(entry) + choice.next)] &
-      detail::kNoHit);
-  // Linear in angle between the two table directions around the ray (a slanted wall's range
-  // changes smoothly); a ray that leaves the map at either reads the nearer one.
-  if (v0 != detail::kNoHit && v1 != detail::kNoHit) {
-    return static_cast<float>(v0) + choice.frac * (static_cast<float>(v1) - static_cast<float>(v0));
-  }
-  const std::uint16_t nearer = choice.frac < 0.5F ? v0 : v1;
-  return nearer == detail::kNoHit ? kLeavesMap : static_cast<float>(nearer);
 }
 
 inline float RangeTable::Impl::read(const Choice& choice, float max_range) const noexcept {
   const float inv_units = 1.0F / static_cast<float>(stats.units_per_cell);
-  if (!options.certify) {
-    // The nearest direction's entry alone (frac is 0): one read, as fast as it was.
-    std::uint16_t v = ranges[choice.entry];
-    float along = choice.along;
-    if (v != detail::kNoHit && static_cast<float>(v) * inv_units + along < 0.0F) {
-      // The neighbour's wall lies behind the sensor: fall back to the sensor's own point.
-      v = ranges[choice.own_entry];
-      along = choice.own_along;
-    }
-    if (v == detail::kNoHit) return max_range;
-    return std::clamp((static_cast<float>(v) * inv_units + along) * resolution, 0.0F, max_range);
-  }
-  float v = units_at(choice.entry, choice);
+  std::uint16_t v = ranges[choice.entry];
   float along = choice.along;
-  if (v >= 0.0F && v != kLeavesMap && v * inv_units + along < 0.0F) {
+  if (v != detail::kNoHit && static_cast<float>(v) * inv_units + along < 0.0F) {
     // The neighbour's wall lies behind the sensor: fall back to the sensor's own point.
-    v = units_at(choice.own_entry, choice);
+    v = ranges[choice.own_entry];
     along = choice.own_along;
   }
-  if (v == kCastExactly) return kCastExactly;
-  if (v == kLeavesMap) return max_range;
-  return std::clamp((v * inv_units + along) * resolution, 0.0F, max_range);
+  if (v == detail::kNoHit) return max_range;
+  return std::clamp((static_cast<float>(v) * inv_units + along) * resolution, 0.0F, max_range);
 }
 
 float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
@@ -218,49 +119,21 @@ float RangeTable::Impl::cast_ray(const detail::GridRay& grid_ray, double angle,
   const double beam = 0.0;
   BeamScratch scratch(1);
   Choice choice;
-  std::unique_lock<std::shared_mutex> lock;  // a tiled table's tiles stay until the ray is read
-  if (tiles) {
-    lock = std::unique_lock(tiles->mutex());
-    std::vector<std::uint32_t> needed;
-    tiles->for_each_around(i, j, [&](std::size_t t) { needed.push_back(std::uint32_t(t)); });
-    tbb::this_task_arena::isolate(  // as in cast(): no outer task while holding the lock
-        [&] { tiles->ensure(needed, [&](std::size_t t) { build_tile(t); }); });
-  }
-  float range = kCastExactly;
-  if (!tiles || tiles->covers(i, j)) {
-    const Candidates c =
-        tiles ? tile_candidates(i, j, ray.ox, ray.oy) : candidates(i, j, ray.ox, ray.oy);
-    if (confirms()) {
-      const auto direction = [&](std::size_t) {
-        return std::pair{static_cast<float>(ray.dx), static_cast<float>(ray.dy)};
-      };
-      confirm_beams(c, ray.ox, ray.oy, a_real, {&beam, 1}, direction, max_range, scratch, &range);
-    } else {
-      choose(c, a_real, {&beam, 1}, scratch, {&choice, 1});
-      range = read(choice, max_range);
-    }
-  }
-  if (range != kCastExactly) return range;
-  const detail::FlushDenormals denormals_off;
-  float exact = max_range;
-  detail::Single1 query(walls->scene(), max_range, std::span<float>(&exact, 1));
-  query.add(ray, 0);
-  detail::check_embree_thread("casting a ray");
-  return exact;
+  choose(candidates(i, j, ray.ox, ray.oy), a_real, {&beam, 1}, scratch, {&choice, 1});
+  return read(choice, max_range);
 }
 
-template <class Wrap, class Exact>
+template <class Wrap>
 void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::CellMask& m,
                                   std::span<const double> beam_index, const Wrap& wrap,
-                                  std::size_t begin, std::size_t end, std::span<float> out_ranges,
-                                  Exact* exact, const detail::BundleGroups* bundles) const {
+                                  std::size_t begin, std::size_t end,
+                                  std::span<float> out_ranges) const {
   const std::size_t beams = rays.beams();
   const double per_rad = options.angles / (2.0 * std::numbers::pi);
   std::vector<Choice> choices(beams);
   BeamScratch scratch(beams);
-  const bool framed = bundles != nullptr && !bundles->sensors.empty();
   for (std::size_t p = begin; p < end; ++p) {
-    const detail::SensorFrame s = framed ? bundles->sensors[p] : rays.sensor(p);
+    const detail::SensorFrame s = rays.sensor(p);
     float* out = out_ranges.data() + p * beams;
     if (!s.finite) {
       std::fill(out, out + beams, std::numeric_limits<float>::quiet_NaN());
@@ -275,32 +148,15 @@ void RangeTable::Impl::cast_chunk(const detail::BatchRays& rays, const detail::C
       for (std::size_t b = 0; b < beams; ++b) {
         out[b] = detail::walk_grid(m, m.prepare(rays.ray(s, b)), rays.max_range());
       }
-    } else if (exact != nullptr && tiles && !tiles->covers(i, j)) {
-      // A tile the budget could not hold for this cast (a tiled table always passes `exact`).
-      for (std::size_t b = 0; b < beams; ++b) exact->add(rays.ray(s, b), p * beams + b);
     } else {
-      const Candidates c = tiles ? tile_candidates(i, j, s.ox, s.oy) : candidates(i, j, s.ox, s.oy);
-      const double heading = wrap(std::atan2(s.s, s.c) * per_rad);
-      if (confirms()) {
-        const auto direction = [&](std::size_t b) {
-          const detail::GridRay r = rays.ray(s, b);
-          return std::pair{static_cast<float>(r.dx), static_cast<float>(r.dy)};
-        };
-        confirm_beams(c, s.ox, s.oy, heading, beam_index, direction, rays.max_range(), scratch,
-                      out);
-      } else {
-        choose(c, heading, beam_index, scratch, choices);
-        for (std::size_t b = 0; b < beams; ++b) out[b] = read(choices[b], rays.max_range());
-      }
-      if (exact == nullptr || (framed && bundles->grouped[p] != 0)) continue;
-      for (std::size_t b = 0; b < beams; ++b) {
-        if (out[b] == kCastExactly) exact->add(rays.ray(s, b), p * beams + b);
-      }
+      choose(candidates(i, j, s.ox, s.oy), wrap(std::atan2(s.s, s.c) * per_rad), beam_index,
+             scratch, choices);
+      for (std::size_t b = 0; b < beams; ++b) out[b] = read(choices[b], rays.max_range());
     }
   }
 }
 
-void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tiles mode) const {
+void RangeTable::cast(const RayBatch& batch, std::span<float> ranges) const {
   const Impl& t = *impl_;
   const detail::GridFrame frame(t.origin);
   const detail::CellMask m = t.mask();
@@ -312,73 +168,10 @@ void RangeTable::cast_batch(const RayBatch& batch, std::span<float> ranges, Tile
     return index - n * std::floor(index / n);  // into [0, n), so heading + beam stays in [0, 2n)
   };
   for (std::size_t b = 0; b < beams; ++b) beam_index[b] = wrap(batch.beam_angles[b] * per_rad);
-  const auto cast_all = [&] {
-    // A certified table's uncertified rays: in bundles when the sensors gather (decided on the
-    // whole set in prepare for cast_prepared), else Embree. Either way all of them: a ray's
-    // range then does not depend on which sensors share its part of the set.
-    detail::BundleGroups groups;
-    const bool prepared = mode == Tiles::kRead;
-    if (t.bits && (!prepared || t.prepared_bundles.load(std::memory_order_relaxed))) {
-      groups = detail::group_for_bundles(rays, m, t.options.particle_grain, 1);
-      if (!prepared && groups.mean_size() < detail::kBundlesPayForSomeRays) groups = {};
-    }
-    par::for_each_chunk(
-        rays.particles(), t.options.particle_grain, [&](std::size_t begin, std::size_t end) {
-          if (t.walls) {
-            t.cast_chunk_certified(rays, m, beam_index, wrap, begin, end, ranges, &groups);
-          } else {
-            t.cast_chunk<decltype(wrap), detail::Packet16>(rays, m, beam_index, wrap, begin, end,
-                                                           ranges, nullptr);
-          }
-        });
-    if (groups.count() > 0) detail::cast_bundles(rays, m, *t.bits, groups, ranges, kCastExactly);
-  };
-  if (!t.tiles) {
-    cast_all();
-    return;
-  }
-  // Isolated: while this thread holds the lock and waits for its tasks, it must not take up
-  // an outer task of the caller's that casts on this table too (it would wait on itself).
-  if (mode == Tiles::kRead) {
-    const std::shared_lock lock(t.tiles->mutex());
-    tbb::this_task_arena::isolate(cast_all);
-    return;
-  }
-  // The tiles this batch needs, built before any ray is read and kept until the last one is.
-  const std::unique_lock lock(t.tiles->mutex());
-  tbb::this_task_arena::isolate([&] {
-    t.prepare_tiles(rays, m);
-    cast_all();
-  });
-}
-
-void RangeTable::cast(const RayBatch& batch, std::span<float> ranges) const {
-  cast_batch(batch, ranges, Tiles::kBuild);
-}
-
-void RangeTable::cast_prepared(const RayBatch& batch, std::span<float> ranges) const {
-  cast_batch(batch, ranges, Tiles::kRead);
-}
-
-void RangeTable::prepare(const RayBatch& batch) const {
-  const Impl& t = *impl_;
-  if (!t.tiles && !t.bits) return;
-  const detail::GridFrame frame(t.origin);
-  const detail::CellMask m = t.mask();
-  const detail::BatchRays rays(frame, m, batch, batch.ray_count());  // no ranges to check
-  if (t.bits) {
-    t.prepared_bundles.store(detail::bundles_pay(rays, m, detail::kBundlesPayForSomeRays),
-                             std::memory_order_relaxed);
-  }
-  if (!t.tiles) return;
-  const std::unique_lock lock(t.tiles->mutex());
-  tbb::this_task_arena::isolate([&] { t.prepare_tiles(rays, m); });
-}
-
-std::size_t RangeTable::tiles_built() const {
-  if (!impl_->tiles) return 0;
-  const std::shared_lock lock(impl_->tiles->mutex());
-  return impl_->tiles->built();
+  par::for_each_chunk(rays.particles(), t.options.particle_grain,
+                      [&](std::size_t begin, std::size_t end) {
+                        t.cast_chunk(rays, m, beam_index, wrap, begin, end, ranges);
+                      });
 }
 
 float RangeTable::cast_one(Point2 origin, double angle, float max_range) const {

@@ -34,8 +34,7 @@ LineFamily family_for(int width, int height, double dx, double dy, double spacin
 }
 
 /// Sorts the points onto their nearest lines (a counting sort: stable in slot order), over the
-/// lines [s.first_line, s.first_line + s.line_start.size() - 1) that hold points only: a tile's
-/// few hundred lines, not the whole map's.
+/// lines [s.first_line, s.first_line + s.line_start.size() - 1) that hold points only.
 void bucket_points(const LineFamily& f, std::span<const float> px, std::span<const float> py,
                    SweepScratch& s) {
   const std::size_t n = px.size();

@@ -10,11 +10,10 @@
 
 namespace mote::detail {
 
-/// Range entry of a ray that leaves the map without meeting a blocking cell (15 bits: the top
-/// bit is the certification flag).
+/// Range entry of a ray that leaves the map without meeting a blocking cell. 15 bits, as when
+/// the top bit flagged certification (removed): the units per cell, and so the ranges, stay
+/// those measured in BENCHMARKS.md.
 inline constexpr std::uint16_t kNoHit = 0x7FFFU;
-/// Top bit of an entry: set when the entry cannot vouch for its rays (range_table_certify.hpp).
-inline constexpr std::uint16_t kUncertified = 0x8000U;
 /// Lines per lattice step: the nearest line passes within half this of every lattice point.
 inline constexpr double kLineSpacing = 0.25;
 

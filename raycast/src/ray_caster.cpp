@@ -1,7 +1,6 @@
 #include "mote/raycast/ray_caster.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -10,7 +9,6 @@
 #include "embree_packets.hpp"
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
-#include "ray_bundles.hpp"
 #include "ray_setup.hpp"
 #include "wall_scene.hpp"
 
@@ -22,29 +20,23 @@ struct RayCaster::Impl {
   std::vector<std::uint8_t> blocking;
   detail::CellMask mask;
   detail::WallScene walls;
-  detail::BitMask bits;  ///< for casting gathered sensors' rays in bundles
-  /// prepare()'s choice for cast_prepared(): bundles when the set's sensors gather.
-  mutable std::atomic<bool> prepared_bundles{false};
 
   Impl(const OccupancyGrid& grid, RayCastOptions opts)
       : frame(grid.origin()),
         options(opts),
         blocking(detail::blocking_mask(grid, opts.unknown_blocks)),
         mask{grid.width(), grid.height(), static_cast<float>(grid.resolution()), blocking.data()},
-        walls(mask),
-        bits(mask) {}
+        walls(mask) {}
 
-  /// Casts particles [begin, end) with the given query type, but for those with skip[p] != 0
-  /// (when skip is not empty); a sensor inside a blocking cell gets 0 on every beam, because
-  /// Embree would report the wall's far side.
+  /// Casts particles [begin, end) with the given query type; a sensor inside a blocking cell
+  /// gets 0 on every beam, because Embree would report the wall's far side.
   template <class Query>
   void cast_chunk(const detail::BatchRays& rays, std::size_t begin, std::size_t end,
-                  std::span<float> ranges, std::span<const std::uint8_t> skip = {}) const {
+                  std::span<float> ranges) const {
     const detail::FlushDenormals denormals_off;
     const std::size_t beams = rays.beams();
     Query query(walls.scene(), rays.max_range(), ranges);
     for (std::size_t p = begin; p < end; ++p) {
-      if (!skip.empty() && skip[p] != 0) continue;
       const detail::SensorFrame s = rays.sensor(p);
       const auto row = ranges.subspan(p * beams, beams);
       if (!s.finite) {
@@ -59,15 +51,14 @@ struct RayCaster::Impl {
     detail::check_embree_thread("casting rays");
   }
 
-  /// Every particle but those with skip[p] != 0 through Embree, parallel over particles.
-  void cast_embree(const detail::BatchRays& rays, std::span<float> ranges,
-                   std::span<const std::uint8_t> skip) const {
+  /// Every particle through Embree, parallel over particles.
+  void cast_embree(const detail::BatchRays& rays, std::span<float> ranges) const {
     par::for_each_chunk(rays.particles(), options.particle_grain,
                         [&](std::size_t begin, std::size_t end) {
                           if (options.packets) {
-                            cast_chunk<detail::Packet16>(rays, begin, end, ranges, skip);
+                            cast_chunk<detail::Packet16>(rays, begin, end, ranges);
                           } else {
-                            cast_chunk<detail::Single1>(rays, begin, end, ranges, skip);
+                            cast_chunk<detail::Single1>(rays, begin, end, ranges);
                           }
                         });
   }
@@ -83,29 +74,7 @@ std::size_t RayCaster::wall_count() const noexcept { return impl_->walls.wall_co
 
 void RayCaster::cast(const RayBatch& batch, std::span<float> ranges) const {
   const detail::BatchRays rays(impl_->frame, impl_->mask, batch, ranges.size());
-  impl_->cast_embree(rays, ranges, {});
-}
-
-void RayCaster::prepare(const RayBatch& batch) const {
-  const detail::BatchRays rays(impl_->frame, impl_->mask, batch, batch.ray_count());
-  impl_->prepared_bundles.store(
-      detail::bundles_pay(rays, impl_->mask, detail::kBundlesPayForEveryRay),
-      std::memory_order_relaxed);
-}
-
-void RayCaster::cast_prepared(const RayBatch& batch, std::span<float> ranges) const {
-  const Impl& impl = *impl_;
-  const detail::BatchRays rays(impl.frame, impl.mask, batch, ranges.size());
-  if (!impl.prepared_bundles.load(std::memory_order_relaxed)) {
-    impl.cast_embree(rays, ranges, {});
-    return;
-  }
-  // Every sensor on the map, finite and outside walls goes to a bundle, however small its
-  // group; the rest (off the map, in a wall, not finite) as cast() treats them.
-  const detail::BundleGroups groups =
-      detail::group_for_bundles(rays, impl.mask, impl.options.particle_grain, 1);
-  impl.cast_embree(rays, ranges, groups.grouped);
-  detail::cast_bundles(rays, impl.mask, impl.bits, groups, ranges);
+  impl_->cast_embree(rays, ranges);
 }
 
 float RayCaster::cast_one(Point2 origin, double angle, float max_range) const {

@@ -29,8 +29,7 @@ RangeTableSummary summarize_range_table(const OccupancyGrid& grid, const RangeTa
   return {.stats = table.stats(),
           .accuracy = measure_range_table(table, exact, grid, kRangeTableCheckRays,
                                           kRangeTableCheckRange, 1),
-          .unknown_blocks = options.unknown_blocks,
-          .certified = options.certify};
+          .unknown_blocks = options.unknown_blocks};
 }
 
 void print_range_table(std::ostream& out, const RangeTableSummary& s) {
@@ -41,21 +40,6 @@ void print_range_table(std::ostream& out, const RangeTableSummary& s) {
            std::to_string(t.points) + " points");
   line(out, "  memory", fixed(static_cast<double>(t.bytes) / 1048576.0, 1) + " MB");
   line(out, "  build", fixed(t.build_seconds, 3) + " s");
-  if (t.tile_cells > 0) {
-    line(out, "  tiles",
-         std::to_string(t.tile_cells) + " x " + std::to_string(t.tile_cells) +
-             " cells, built on first use, at most " + std::to_string(t.max_resident_tiles) +
-             " held (the whole table is over budget); the check below draws from up to 8 of them");
-  }
-  if (s.certified && t.tile_cells > 0) {
-    line(out, "  certified",
-         "tile by tile as each is built; the rays of uncertified entries are cast exactly, with "
-         "Embree");
-  } else if (s.certified) {
-    line(out, "  certified",
-         fixed(100.0 * (1.0 - t.uncertified), 2) + " % of entries; the rays of the other " +
-             fixed(100.0 * t.uncertified, 2) + " % are cast exactly, with Embree");
-  }
   line(out, "  vs Embree",
        fixed(100.0 * a.within_one_cell, 2) + " % within 1 cell, " +
            fixed(100.0 * a.within_two_cells, 2) + " % within 2 (" + std::to_string(a.rays) +
@@ -73,13 +57,6 @@ void write_range_table_json(JsonWriter& json, const RangeTableSummary& s) {
   json.member("angles", t.angles).member("lattice_cells", t.lattice);
   json.member("points", std::uint64_t{t.points}).member("bytes", std::uint64_t{t.bytes});
   json.member("build_s", t.build_seconds).member("unknown_blocks", s.unknown_blocks);
-  json.member("certified", s.certified);
-  if (t.tile_cells > 0) {
-    json.member("tile_cells", t.tile_cells)
-        .member("max_resident_tiles", std::uint64_t{t.max_resident_tiles})
-        .member("tiles_built_by_updates", std::uint64_t{s.tiles_built_by_updates});
-  }
-  if (s.certified && t.tile_cells == 0) json.member("uncertified_entries", t.uncertified);
   json.key("vs_embree").begin_object();
   json.member("rays", std::uint64_t{a.rays});
   json.member("max_range_m", static_cast<double>(kRangeTableCheckRange));

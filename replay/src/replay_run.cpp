@@ -127,17 +127,11 @@ ReplayResult run_replay(const ReplayOptions& options) {
   const RangeTable* table = filter.range_table();
   if (table) {
     result.range_table = summarize_range_table(
-        result.map, *table,
-        {.unknown_blocks = options.config.unknown_cells_block_rays,
-         .certify = options.config.ray_casting == RayCasting::kTableCertified});
+        result.map, *table, {.unknown_blocks = options.config.unknown_cells_block_rays});
   }
-  // After the accuracy check, whose tile builds are not the updates'.
-  const std::size_t tiles_before = table ? table->tiles_built() : 0;
-
   const auto start = Clock::now();
   run_frames(result, filter, *source, options, sorted_reference);
   result.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
-  if (table) result.range_table->tiles_built_by_updates = table->tiles_built() - tiles_before;
 
   result.reader = source->stats();
   result.laser_range_max_source = source->range_max_source();

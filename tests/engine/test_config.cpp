@@ -226,23 +226,15 @@ namespace {
 TEST(ParseConfig, RayCastingSelectsExactOrTable) {
   EXPECT_EQ(LocalizerConfig{}.ray_casting, RayCasting::kExact) << "exact stays the default";
   const LoadedConfig loaded = parse_config(
-      "ray_casting: table\nrange_table_angles: 256\nrange_table_budget_mb: 64\n"
-      "range_table_tiles: false\n",
-      "t.yaml");
+      "ray_casting: table\nrange_table_angles: 256\nrange_table_budget_mb: 64\n", "t.yaml");
   EXPECT_EQ(loaded.config.ray_casting, RayCasting::kTable);
   EXPECT_EQ(loaded.config.range_table_angles, 256);
   EXPECT_DOUBLE_EQ(loaded.config.range_table_budget_mb, 64.0);
-  EXPECT_FALSE(loaded.config.range_table_tiles);
-  EXPECT_TRUE(LocalizerConfig{}.range_table_tiles) << "tiles over budget by default";
   EXPECT_TRUE(loaded.warnings.empty());
   EXPECT_EQ(parse_config("ray_casting: exact\n", "e.yaml").config.ray_casting, RayCasting::kExact);
-  EXPECT_EQ(parse_config("ray_casting: table_certified\n", "c.yaml").config.ray_casting,
-            RayCasting::kTableCertified);
-  LocalizerConfig certified;
-  certified.ray_casting = RayCasting::kTableCertified;
-  EXPECT_EQ(parse_config(config_yaml(certified, LocalizerConfig{}), "w.yaml").config, certified);
-  expect_input_error("ray_casting: fast\n",
-                     "line 1, key 'ray_casting': expected exact, table or table_certified");
+  expect_input_error("ray_casting: fast\n", "line 1, key 'ray_casting': expected exact or table");
+  expect_input_error("ray_casting: table_certified\n",
+                     "line 1, key 'ray_casting': expected exact or table");
   expect_input_error("range_table_angles: 100\n", "range_table_angles");
   expect_input_error("range_table_budget_mb: 0\n", "range_table_budget_mb");
 }
@@ -296,7 +288,6 @@ LocalizerConfig every_field_changed() {
   c.ray_casting = RayCasting::kTable;
   c.range_table_angles = 256;
   c.range_table_budget_mb = 64.0;
-  c.range_table_tiles = false;
   c.unmapped_obstacle_filter = false;
   c.threads = 2;
   c.seed = 18446744073709551615ULL;

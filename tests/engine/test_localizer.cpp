@@ -92,16 +92,13 @@ TEST_F(LocalizerOnIntel, BeamModelTracksWithin5cmAnd1Degree) {
   EXPECT_LT(theta, 1.0 * kDeg);
 }
 
-// The plain and the certified range table.
-TEST_F(LocalizerOnIntel, BeamModelWithTheRangeTablesTracksWithin5cmAnd1Degree) {
-  for (const RayCasting table : {RayCasting::kTable, RayCasting::kTableCertified}) {
-    LocalizerConfig config = tracking_config(2000);
-    config.laser_model_type = LaserModel::kBeam;
-    config.ray_casting = table;
-    const auto [xy, theta] = track(config, 40);
-    EXPECT_LT(xy, 0.05) << name_of(table);
-    EXPECT_LT(theta, 1.0 * kDeg) << name_of(table);
-  }
+TEST_F(LocalizerOnIntel, BeamModelWithTheRangeTableTracksWithin5cmAnd1Degree) {
+  LocalizerConfig config = tracking_config(2000);
+  config.laser_model_type = LaserModel::kBeam;
+  config.ray_casting = RayCasting::kTable;
+  const auto [xy, theta] = track(config, 40);
+  EXPECT_LT(xy, 0.05);
+  EXPECT_LT(theta, 1.0 * kDeg);
 }
 
 TEST_F(LocalizerOnIntel, GlobalLocalizationConverges) {
@@ -230,11 +227,9 @@ TEST_F(LocalizerOnIntel, AllMaxRangeScansLeaveTheStateAlone) {
 
 // Runs 100 updates and returns the particle columns, bytes and all.
 std::vector<float> run_filter(const OccupancyGrid& map, Pose2 start, int threads, std::size_t grain,
-                              LaserModel model, RayCasting source = RayCasting::kExact,
-                              double budget_mb = 256.0, int* tile_cells = nullptr) {
+                              LaserModel model, RayCasting source = RayCasting::kExact) {
   LocalizerConfig config = tracking_config(0);
   config.ray_casting = source;
-  config.range_table_budget_mb = budget_mb;
   config.range_table_angles = 64;  // a small table: built three times, also under sanitizers
   config.min_particles = 500;
   config.max_particles = model == LaserModel::kBeam ? 1000 : 8000;
@@ -246,7 +241,6 @@ std::vector<float> run_filter(const OccupancyGrid& map, Pose2 start, int threads
   Drive drive(map, start, 5);
   filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
   for (int k = 0; k < 100; ++k) drive.feed(filter);
-  if (tile_cells != nullptr) *tile_cells = filter.range_table()->stats().tile_cells;
   const ConstParticleView p = filter.particles();
   std::vector<float> all;
   for (const float* column : {p.x, p.y, p.theta, p.logw})
@@ -271,32 +265,13 @@ TEST_F(LocalizerOnIntel, BitIdenticalForAnyThreadCountAndGrain) {
 
 // Issue 19: the range table is built in parallel and looked up in parallel; neither may depend
 // on the thread count or the grain.
-// The certified table's exact casts are queued per chunk by particle index: the same.
 TEST_F(LocalizerOnIntel, RangeTableBitIdenticalForAnyThreadCountAndGrain) {
-  for (const RayCasting table : {RayCasting::kTable, RayCasting::kTableCertified}) {
-    const std::vector<float> one = run_filter(*map_, start_, 1, 4096, LaserModel::kBeam, table);
-    EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 4096, LaserModel::kBeam, table)));
-    EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 256, LaserModel::kBeam, table)));
-    EXPECT_FALSE(bit_identical(one, run_filter(*map_, start_, 1, 4096, LaserModel::kBeam)))
-        << "the table's ranges are not the exact ones, so the runs must differ somewhere";
-  }
-}
-
-/// A budget under Intel's whole table (24 MB at 64 angles) tiles it: 8 MB holds 7 of its 512 KB
-/// tiles. The beam model prepares the tiles from one thread before its chunks read them, so
-/// nothing depends on threads or grain; and as the particles' tiles fit the budget, the run
-/// reads what the whole table reads.
-TEST_F(LocalizerOnIntel, TiledRangeTableBitIdenticalForAnyThreadCountAndGrain) {
-  int tile_cells = 0;
-  const std::vector<float> one =
-      run_filter(*map_, start_, 1, 4096, LaserModel::kBeam, RayCasting::kTable, 8.0, &tile_cells);
-  EXPECT_EQ(tile_cells, 64);
-  EXPECT_TRUE(bit_identical(
-      one, run_filter(*map_, start_, 2, 4096, LaserModel::kBeam, RayCasting::kTable, 8.0)));
-  EXPECT_TRUE(bit_identical(
-      one, run_filter(*map_, start_, 2, 256, LaserModel::kBeam, RayCasting::kTable, 8.0)));
-  EXPECT_TRUE(bit_identical(
-      one, run_filter(*map_, start_, 1, 4096, LaserModel::kBeam, RayCasting::kTable)));
+  const RayCasting table = RayCasting::kTable;
+  const std::vector<float> one = run_filter(*map_, start_, 1, 4096, LaserModel::kBeam, table);
+  EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 4096, LaserModel::kBeam, table)));
+  EXPECT_TRUE(bit_identical(one, run_filter(*map_, start_, 2, 256, LaserModel::kBeam, table)));
+  EXPECT_FALSE(bit_identical(one, run_filter(*map_, start_, 1, 4096, LaserModel::kBeam)))
+      << "the table's ranges are not the exact ones, so the runs must differ somewhere";
 }
 
 TEST_F(LocalizerOnIntel, GateSkipsUpdatesWithoutMotion) {

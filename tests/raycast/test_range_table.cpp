@@ -30,7 +30,7 @@ constexpr float kMaxRange = 30.0F;
 /// that makes the table less accurate fails (within two cells: rays that are grossly off, which
 /// the p99 alone does not count once most rays are right); issue 19 asked for 99% within one cell,
 /// which a 256 MB table of these maps does not reach (the misses are rays grazing walls, see
-/// BENCHMARKS.md); the certified table does (test_range_table_certified.cpp).
+/// BENCHMARKS.md).
 struct Floor {
   const char* map;
   double within_one_cell;
@@ -178,10 +178,7 @@ TEST(RangeTable, BatchMatchesSingleRaysOnIntel) {
   const auto [x, y, theta] = test::scatter_in_free_cells(grid, 1500, 11);
   const RayBatch batch{x, y, theta, beams, Pose2{}, kMaxRange};
   for (const std::size_t budget_mb : {std::size_t{256}, std::size_t{40}}) {
-    // Without tiles: a tiled table under budget pressure casts a batch's rays from tiles it
-    // cannot hold exactly, where a single ray builds its tile (test_range_table_tiles.cpp).
-    const RangeTable table(
-        grid, RangeTableOptions{.memory_budget_bytes = budget_mb << 20U, .tiles = false});
+    const RangeTable table(grid, RangeTableOptions{.memory_budget_bytes = budget_mb << 20U});
     ASSERT_EQ(table.stats().lattice, budget_mb == 256 ? 1 : 3);
     std::vector<float> out(batch.ray_count());
     table.cast(batch, out);
@@ -209,17 +206,9 @@ TEST(RangeTable, CoarserLatticeWhenOverBudgetAndErrorWhenNothingFits) {
   RangeTableOptions options;
   options.angles = 64;
   options.memory_budget_bytes = std::size_t{8} << 20U;  // every cell would need 24 MB
-  options.tiles = false;
   const RangeTable table(grid, options);
   EXPECT_GT(table.stats().lattice, 1);
-  EXPECT_EQ(table.stats().tile_cells, 0);
   EXPECT_LE(table.stats().bytes, options.memory_budget_bytes);
-  options.tiles = true;  // the default: tiles of every cell instead of a coarser lattice
-  const RangeTable tiled(grid, options);
-  EXPECT_EQ(tiled.stats().lattice, 1);
-  EXPECT_EQ(tiled.stats().tile_cells, 64);
-  EXPECT_GE(tiled.stats().max_resident_tiles, 4U);
-  EXPECT_LE(tiled.stats().bytes, options.memory_budget_bytes);
   options.memory_budget_bytes = 1000;
   try {
     const RangeTable none(grid, options);

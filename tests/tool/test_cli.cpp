@@ -213,8 +213,7 @@ TEST(Cli, InfoDescribesRos2AndCarmenLogs) {
 }
 
 // Issue 19: `mote info --map` builds the range table and prints its layout, memory, build time
-// and error against Embree (with --certified, the share of entries whose rays are cast exactly);
-// a budget too small for any table is a one-line error naming the
+// and error against Embree; a budget too small for any table is a one-line error naming the
 // size needed.
 TEST(Cli, InfoMapReportsTheRangeTable) {
   const Outcome o = mote("info --map '" + floorplan().string() + "' --range-table-angles 64");
@@ -223,27 +222,13 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
                            "% within 1 cell", "error (cells)"}) {
     EXPECT_NE(o.out.find(text), std::string::npos) << text << " in\n" << o.out;
   }
-  EXPECT_EQ(o.out.find("certified"), std::string::npos) << o.out;
-  EXPECT_EQ(o.out.find("built on first use"), std::string::npos) << o.out;
-  // 12.5 MB on every cell at 64 angles: 3 MB tiles it.
-  const Outcome tiled = mote("info --map '" + floorplan().string() +
-                             "' --range-table-angles 64 --range-table-budget-mb 3");
-  ASSERT_EQ(tiled.status, 0) << tiled.err;
-  EXPECT_NE(tiled.out.find("64 x 64 cells, built on first use"), std::string::npos) << tiled.out;
-  EXPECT_NE(tiled.out.find("% within 1 cell"), std::string::npos) << tiled.out;
-  // The same budget without tiles: the whole table on a coarser lattice.
+  // 12.5 MB on every cell at 64 angles: at 3 MB the table is on a coarser lattice.
   const Outcome coarse = mote("info --map '" + floorplan().string() +
-                              "' --range-table-angles 64 --range-table-budget-mb 3 "
-                              "--range-table-no-tiles");
+                              "' --range-table-angles 64 --range-table-budget-mb 3");
   ASSERT_EQ(coarse.status, 0) << coarse.err;
-  EXPECT_EQ(coarse.out.find("built on first use"), std::string::npos) << coarse.out;
   EXPECT_NE(coarse.out.find("64 angles, lattice "), std::string::npos) << coarse.out;
   EXPECT_EQ(coarse.out.find("64 angles, lattice 1 "), std::string::npos) << coarse.out;
   EXPECT_NE(coarse.out.find("% within 1 cell"), std::string::npos) << coarse.out;
-  const Outcome certified =
-      mote("info --map '" + floorplan().string() + "' --range-table-angles 64 --certified");
-  ASSERT_EQ(certified.status, 0) << certified.err;
-  EXPECT_NE(certified.out.find("% are cast exactly"), std::string::npos) << certified.out;
   const Outcome tiny =
       mote("info --map '" + floorplan().string() + "' --range-table-budget-mb 0.001");
   EXPECT_EQ(tiny.status, 1) << tiny.out;
@@ -251,38 +236,16 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
   EXPECT_NE(tiny.err.find("needs"), std::string::npos) << tiny.err;
 }
 
-// Issue 19: report.json says whether the beam model's table is certified and which share of its
-// entries sends rays to Embree; the certified table tracks a simulated log.
-TEST(Cli, ReplayReportsTheCertifiedTable) {
-  const fs::path dir = scratch("certified");
+// Issue 19: a table over budget is built on a coarser lattice, report.json says which, and the
+// coarser table tracks a simulated log.
+TEST(Cli, ReplayReportsTheCoarserLatticeOfATableOverBudget) {
+  const fs::path dir = scratch("coarse");
   ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
-  const std::string report = replay_beam_report(dir, "ray_casting: table_certified\n");
-  EXPECT_NE(report.find("\"certified\": true"), std::string::npos) << report;
-  const double uncertified = json_number(report, "uncertified_entries");
-  EXPECT_GT(uncertified, 0.0);
-  EXPECT_LT(uncertified, 1.0);
-  EXPECT_GT(json_number(report, "within_one_cell"), 0.99);
+  // 12.5 MB on every cell at 64 angles (InfoMapReportsTheRangeTable).
+  const std::string report = replay_beam_report(
+      dir, "ray_casting: table\nrange_table_angles: 64\nrange_table_budget_mb: 3\n");
+  EXPECT_GT(json_number(report, "lattice_cells"), 1.0) << report;
   EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
-}
-
-// Issue 19: a table over budget is built in tiles as the updates need them; report.json counts
-// the tiles the updates built, and the tiled table tracks a simulated log. With tiles off, the
-// same budget gives a coarser lattice.
-TEST(Cli, ReplayReportsTheTilesItsUpdatesBuilt) {
-  const fs::path dir = scratch("tiled");
-  ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
-  // 12.5 MB on every cell at 64 angles (InfoMapReportsTheRangeTable): 3 MB tiles it.
-  const std::string config =
-      "ray_casting: table\nrange_table_angles: 64\nrange_table_budget_mb: 3\n";
-  const std::string report = replay_beam_report(dir, config);
-  EXPECT_EQ(json_number(report, "tile_cells"), 64.0) << report;
-  EXPECT_GE(json_number(report, "tiles_built_by_updates"), 1.0) << report;
-  EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
-
-  // range_table_tiles: false: the same budget coarsens the lattice instead.
-  const std::string coarse = replay_beam_report(dir, config + "range_table_tiles: false\n");
-  EXPECT_EQ(coarse.find("tile_cells"), std::string::npos) << coarse;
-  EXPECT_GT(json_number(coarse, "lattice_cells"), 1.0) << coarse;
 }
 
 // An MCAP file cut short (here: the recording's zstd file cut in its middle, as a crash while

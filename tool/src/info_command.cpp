@@ -12,14 +12,11 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 10> kFlags{{
+constexpr std::array<FlagSpec, 8> kFlags{{
     {"map", "MAP.yaml", "instead of a LOG: the map, and the beam model's range table built on it"},
     {"range-table-angles", "N", "with --map: table directions, a multiple of 32 (default 512)"},
     {"range-table-budget-mb", "MB", "with --map: table memory budget (default 256)"},
     {"unknown-free", "", "with --map: unknown cells do not stop rays (default: they do)"},
-    {"certified", "", "with --map: the certified table (ray_casting: table_certified)"},
-    {"range-table-no-tiles", "",
-     "with --map: over the budget, a coarser lattice instead of tiles (range_table_tiles: false)"},
     {"scan-topic", "TOPIC", "ROS bags: the LaserScan topic (default: the only one)"},
     {"odom-topic", "TOPIC", "ROS bags: the Odometry topic (default: the only one, or tf)"},
     {"odom-frame", "FRAME", "ROS bags: odometry frame when odometry comes from tf (default odom)"},
@@ -32,16 +29,13 @@ constexpr std::string_view kAbout =
     "counts per topic and type, the laser (beams, field of view, range limits, mounting pose)\n"
     "and the tf frames. LOG: CARMEN .clf/.log, ROS 1 .bag, rosbag2 folder, .mcap or .db3.\n"
     "With --map: the map's size and cells, and the range table (ray_casting: table) built on\n"
-    "it: layout, memory, build time, the share of certified entries (--certified) and its\n"
-    "error against exact Embree casting.";
+    "it: layout, memory, build time and its error against exact Embree casting.";
 
 int map_info(const ParsedArgs& args) {
   const std::string path = args.required("map");
   const OccupancyGrid grid = load_map(path);
   RangeTableOptions options;
   options.unknown_blocks = !args.has("unknown-free");
-  options.certify = args.has("certified");
-  options.tiles = !args.has("range-table-no-tiles");
   if (auto n = args.integer("range-table-angles", 32, 1 << 16)) {
     options.angles = static_cast<int>(*n);
   }

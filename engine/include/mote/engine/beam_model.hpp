@@ -39,13 +39,6 @@ class BeamModel {
   BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
             const std::optional<RangeTableOptions>& table = std::nullopt);
 
-  /// With a range table: makes resident the tiles the particles' sensors need and chooses how
-  /// a certified table casts its uncertified rays (RangeTable::prepare); exactly: chooses
-  /// whether the rays are cast in bundles or through Embree (RayCaster::prepare). So weigh()
-  /// on concurrent chunks only reads, and the result depends neither on the order they run in
-  /// nor on how the particles are chunked. Call before weigh() from one thread.
-  void prepare(const BeamSet& beams, const ParticleView& particles) const;
-
   /// Adds tau * log p(z | x_i) to particles.logw[i] for i in [begin, end). Reentrant.
   void weigh(const BeamSet& beams, const ParticleView& particles, std::size_t begin,
              std::size_t end) const;

@@ -24,11 +24,7 @@ enum class LaserModel : std::uint8_t {
 /// Where the beam model's expected ranges come from.
 enum class RayCasting : std::uint8_t {
   kExact,  ///< an Embree ray per particle and beam
-  kTable,  ///< a precomputed range table (RangeTable), built when the Localizer is
-  /// The range table with its entries certified at build time (RangeTableOptions::certify): the
-  /// rays of entries that cannot vouch for a cell's accuracy are cast exactly with Embree; 99 %
-  /// of rays within one cell of exact casting, at 1.2-2.5 times Embree's speed.
-  kTableCertified,
+  kTable,  ///< a precomputed range table (RangeTable), built with the Localizer
 };
 
 /// How the likelihood-field model combines beams.
@@ -156,13 +152,9 @@ struct LocalizerConfig {
   RayCasting ray_casting = RayCasting::kExact;
   /// Range table: directions over the full circle, a positive multiple of 32.
   int range_table_angles = 512;
-  /// Range table: memory budget (MB). When the table on every cell does not fit, it is built in
-  /// tiles on first use, or on a coarser lattice when range_table_tiles is false.
+  /// Range table: memory budget (MB). When the table on every cell does not fit, it is built on
+  /// a coarser lattice (a point every 2, 3, ... cells).
   double range_table_budget_mb = 256.0;
-  /// Range table over budget: 64 x 64-cell tiles built where the particles are (every cell's
-  /// accuracy; rays from tiles the budget cannot hold are cast exactly) rather than a coarser
-  /// lattice (fast everywhere, less accurate).
-  bool range_table_tiles = true;
   /// Once the belief has settled on one place, leave out, for every particle alike, the beams
   /// that most of it finds blocked by something the map does not hold (people, a crowd, furniture):
   /// the reading ends well short of the first mapped wall along the beam (Fox et al. 1999's

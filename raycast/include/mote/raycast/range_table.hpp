@@ -22,30 +22,12 @@ struct RangeTableOptions {
   /// of 32 (one 64-byte line of entries), at least 32.
   int angles = 512;
   /// Upper bound of the table's bytes. The lattice coarsens (1, 2, 3, ... cells between lattice
-  /// points) until the table fits; ConfigError when even the coarsest lattice does not.
+  /// points) until the table fits; ConfigError when even the coarsest lattice does not. A
+  /// coarser lattice reads fewer rays within a cell of exact casting (Willow at 256 MB: lattice
+  /// 2, 86 % against 91 % on every cell) but tracked the shared logs as well (BENCHMARKS.md,
+  /// "Range table").
   std::size_t memory_budget_bytes = std::size_t{256} << 20U;
   std::size_t particle_grain = 64;  ///< as RayCastOptions::particle_grain
-  /// Certify entries at build time and cast the rays of uncertified ones exactly (the Embree
-  /// scene and a bit mask of the map are built beside the table and counted in its bytes): in
-  /// bundles (raycast/src/ray_bundles.hpp) when the batch's sensors gather in groups of a
-  /// neighbourhood and a heading, else with Embree. Entries then answer by
-  /// interpolating between the two table directions around the ray. Off: every ray reads the
-  /// table, at the nearest direction, fastest and least accurate (BENCHMARKS.md, "Range table").
-  bool certify = false;
-  /// Confirm each ray's range on the map instead of trusting one entry: the entries of the
-  /// lattice points nearest the ray on either side, at the table directions on either side of
-  /// it, each name the wall face their ray entered; the ray's own crossing of that face line is
-  /// an exact range when the map blocks beyond it and is free before it, and the nearest such
-  /// crossing answers. Rays no entry confirms are cast exactly with Embree (the scene is built
-  /// beside the table and counted in its bytes). Ignored when certify is on. 99.2-99.5 % of rays
-  /// within a cell of Embree, most of them exact, but for now slower than Embree casting
-  /// (BENCHMARKS.md, "Claims that name a wall face"); no LocalizerConfig switch yet.
-  bool confirm = false;
-  /// When the table on every cell is over budget: build it in tiles of 64 x 64 cells on first
-  /// use (each certified as it is built, when certify is on) instead of coarsening the
-  /// lattice, holding as many as the budget allows and evicting the least recently used.
-  /// Linux only; elsewhere, or when the budget holds fewer than 4 tiles, the lattice coarsens.
-  bool tiles = true;
 };
 
 /// What the table cost and how it is laid out.
@@ -56,15 +38,6 @@ struct RangeTableStats {
   std::size_t bytes = 0;        ///< everything the table holds: ranges, index, blocking mask
   double build_seconds = 0.0;   ///< wall clock of the sweep
   double units_per_cell = 8.0;  ///< fixed-point range units per cell
-  /// Share of entries that cannot vouch for their rays within a cell (a corner or gap nearby, a
-  /// jump between neighbouring angles): their rays are cast exactly, with Embree. Not known
-  /// (0) for a tiled table, whose tiles are certified as they are built.
-  double uncertified = 0.0;
-  /// 0: the whole table is built. Otherwise tiles of this many cells a side are built on first
-  /// use (a lattice of every cell), at most max_resident_tiles at once; `bytes` counts them all
-  /// and build_seconds the part built up front.
-  int tile_cells = 0;
-  std::size_t max_resident_tiles = 0;
 };
 
 /// A ray caster answering from the table, with the RayCaster contract. A sensor inside or on the
@@ -84,31 +57,14 @@ class RangeTable {
   RangeTable(const RangeTable&) = delete;
   RangeTable& operator=(const RangeTable&) = delete;
 
-  /// Same contract as RayCaster::cast. A tiled table first builds the tiles the batch's
-  /// sensors need (evicting others when the budget is full); casts on one table then run one at
-  /// a time.
+  /// Same contract as RayCaster::cast: read only, so concurrent casts on one table are safe.
   void cast(const RayBatch& batch, std::span<float> ranges) const;
-  /// For callers that cast one set of poses in concurrent parts (the beam model weighs
-  /// particles in chunks on several threads): prepare(all of them) from one thread, then
-  /// cast_prepared(each part) from any, which reads the table without building or evicting
-  /// (rays of sensors whose tiles are not resident are cast exactly) and runs concurrently.
-  /// Which tiles are resident then depends on the whole set, not on the order the parts run
-  /// in. A certified table also decides there, from the whole set, whether the rays of its
-  /// uncertified entries are cast in bundles (when the sensors gather, as a tracking filter's
-  /// do) or with Embree, so that the parts' ranges do not depend on how the set is cut. A
-  /// table neither tiled nor certified does nothing in prepare, and cast_prepared is cast.
-  void prepare(const RayBatch& batch) const;
-  void cast_prepared(const RayBatch& batch, std::span<float> ranges) const;
   /// Same contract as RayCaster::cast_one.
   [[nodiscard]] float cast_one(Point2 origin, double angle, float max_range) const;
 
   [[nodiscard]] const RangeTableStats& stats() const noexcept;
-  /// How many tiles casts have built so far (0 when the whole table is built up front).
-  [[nodiscard]] std::size_t tiles_built() const;
 
  private:
-  enum class Tiles { kBuild, kRead };
-  void cast_batch(const RayBatch& batch, std::span<float> ranges, Tiles mode) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

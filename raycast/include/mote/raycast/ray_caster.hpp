@@ -32,18 +32,6 @@ class RayCaster {
   /// max_range is not a positive number. Particles with a non-finite pose get NaN ranges.
   void cast(const RayBatch& batch, std::span<float> ranges) const;
 
-  /// Chooses how cast_prepared casts parts of this batch (a whole particle set, before it is
-  /// weighed in parts): when the sensors of its parts of 4096 consecutive particles gather (a
-  /// tracking cloud: groups of 32 and more by block of 16 x 16 cells and half-degree heading
-  /// bin), every ray of a part is cast in bundles from a bit mask of the map instead of through
-  /// Embree, up to 2.2 times as fast (bench_e2e, Intel). The ranges are the same walls' up to float
-  /// rounding; at a tie, a ray passing a wall's end at exactly its reach, the bundles decide as the
-  /// grid walk (GridRayCaster) does. The choice is made on the whole set so that a ray's range
-  /// depends on nothing but the ray, whatever the parts.
-  void prepare(const RayBatch& batch) const;
-  /// cast() as prepare() chose for the whole set (Embree before any prepare()). Throws as cast().
-  void cast_prepared(const RayBatch& batch, std::span<float> ranges) const;
-
   /// Range (m) from a map frame point along a map frame angle (rad), at most max_range.
   [[nodiscard]] float cast_one(Point2 origin, double angle, float max_range) const;
 

@@ -20,12 +20,6 @@ struct RangeTableSummary {
   RangeTableStats stats;
   RangeTableAccuracy accuracy;
   bool unknown_blocks = true;
-  /// RangeTableOptions::certify: the rays of uncertified entries (stats.uncertified of all) are
-  /// cast exactly, and the accuracy above includes them.
-  bool certified = false;
-  /// Tiled tables: tile builds by the updates of a replay (a tile evicted and built again counts
-  /// twice; the accuracy check's builds are not counted, the tiles it left resident are reused).
-  std::size_t tiles_built_by_updates = 0;
 };
 
 /// Measures `table` against an Embree caster of the same grid (kRangeTableCheckRays rays of at
