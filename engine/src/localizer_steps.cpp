@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include <Eigen/Cholesky>
+
 #include "localizer_impl.hpp"
 #include "mote/engine/estimate.hpp"
 #include "mote/engine/resample.hpp"
@@ -276,6 +278,23 @@ namespace {
 // Whether the scan constrained a refined pose (some endpoint near a wall, a regular Hessian).
 bool fixed(const ScanMatch& m) { return m.endpoints > 0 && m.covariance.trace() > 0.0; }
 
+// chi-square quantile, 3 degrees of freedom, 0.999: a refinement farther than this from the
+// belief (in its and the match's combined covariance) is one chance in a thousand when both
+// describe the same pose.
+constexpr double kBeliefGate = 16.27;
+
+// Whether the belief supports the match: the squared Mahalanobis distance between the match and
+// the hypothesis it started from, in their summed covariances, within kBeliefGate. A crowd
+// around the robot holds most endpoints; the match then slides toward it, metres from where
+// the particles (whose weighing the unmapped-obstacle filter protects) still are.
+bool supported(const ScanMatch& match, const PoseEstimate& belief) {
+  const Eigen::Vector3d d(match.pose.x - belief.mean.x, match.pose.y - belief.mean.y,
+                          wrap_angle(match.pose.theta - belief.mean.theta));
+  Eigen::Matrix3d s = belief.covariance + match.covariance;
+  s.diagonal().array() += 1e-12;  // a one-particle belief next to an unconstrained match
+  return d.dot(s.ldlt().solve(d)) <= kBeliefGate;
+}
+
 }  // namespace
 
 void Localizer::Impl::adapt_motion_noise(const Pose2& odometry) {
@@ -320,20 +339,27 @@ void Localizer::Impl::update_estimate() {
 
 void Localizer::Impl::judge_localization() {
   const PoseEstimate& best = estimate.best();
-  estimate.refined = matcher->match(endpoints, best.mean);
+  const ScanMatch match = matcher->match(endpoints, best.mean);
   // A scan without an endpoint (every reading a no-return) says nothing about the fit: the
-  // state stays as it was.
+  // state stays as it was. The state reads the match even where the estimate below does not
+  // take it: how well the scan can fit near the hypothesis is the question it answers.
   if (endpoints.empty()) {
     stats.hit_share = stats.see_through = std::numeric_limits<double>::quiet_NaN();
   } else {
-    stats.hit_share = estimate.refined.hit_share;
+    stats.hit_share = match.hit_share;
     const FieldWalker walk(map, field->field);
-    stats.see_through =
-        see_through_share(beams, estimate.refined.pose, walk, 2.0 * config.sigma_hit);
+    stats.see_through = see_through_share(beams, match.pose, walk, 2.0 * config.sigma_hit);
   }
   stats.state = monitor.update(stats.see_through, stats.hit_share, best.weight);
   settled_once = settled_once || best.weight >= monitor.config().settled_weight;
   stats.misfit = monitor.smoothed();
+  // The reported estimate: the match where the belief supports it, else the hypothesis itself,
+  // unrefined and without a covariance (not a fix the odometry-noise fit may use).
+  estimate.refined = supported(match, best)
+                         ? match
+                         : ScanMatch{.pose = best.mean,
+                                     .endpoints = endpoints.size(),
+                                     .hit_share = matcher->hit_share(endpoints, best.mean)};
 }
 
 }  // namespace mote
