@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "mote/engine/histogram_filter.hpp"
-#include "mote/engine/kalman.hpp"
 #include "mote/engine/philox.hpp"
 #include "mote/engine/state_store.hpp"
+#include "mote/filters/histogram_filter.hpp"
+#include "mote/filters/kalman.hpp"
 
 namespace {
 

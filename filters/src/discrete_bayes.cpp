@@ -3,7 +3,7 @@
 #include <string>
 
 #include "mote/core/error.hpp"
-#include "mote/engine/histogram_filter.hpp"
+#include "mote/filters/histogram_filter.hpp"
 
 namespace mote {
 namespace {

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "mote/core/error.hpp"
-#include "mote/engine/histogram_filter.hpp"
 #include "mote/engine/philox.hpp"
 #include "mote/engine/state_store.hpp"
+#include "mote/filters/histogram_filter.hpp"
 #include "mote/maps/map_loader.hpp"
 #include "mote/raycast/grid_ray_caster.hpp"
 #include "mote_test/data.hpp"

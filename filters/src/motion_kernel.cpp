@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "mote/engine/histogram_filter.hpp"
+#include "mote/filters/histogram_filter.hpp"
 
 namespace mote {
 namespace {

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "mote/core/error.hpp"
-#include "mote/engine/kalman.hpp"
 #include "mote/engine/philox.hpp"
 #include "mote/engine/state_store.hpp"
+#include "mote/filters/kalman.hpp"
 
 namespace mote {
 namespace {

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "mote/engine/histogram_filter.hpp"
 #include "mote/engine/philox.hpp"
 #include "mote/engine/state_store.hpp"
+#include "mote/filters/histogram_filter.hpp"
 #include "mote/maps/map_loader.hpp"
 #include "mote/raycast/grid_ray_caster.hpp"
 #include "mote_test/data.hpp"

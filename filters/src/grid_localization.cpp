@@ -6,8 +6,8 @@
 
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
-#include "mote/engine/histogram_filter.hpp"
 #include "mote/engine/sensor_model.hpp"
+#include "mote/filters/histogram_filter.hpp"
 
 namespace mote {
 namespace {
