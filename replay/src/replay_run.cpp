@@ -140,6 +140,16 @@ ReplayResult run_replay(const ReplayOptions& options) {
     MetricOptions metrics = options.metrics;
     metrics.start_stamp = result.first_stamp;
     result.errors = compare_trajectories(result.trajectory, sorted_reference, metrics);
+    if (result.errors->matched == 0 && !result.trajectory.empty()) {
+      throw Error(options.reference.string() + ": no reference pose within " +
+                  std::to_string(metrics.match_tolerance_s) + " s of any of the run's " +
+                  std::to_string(result.trajectory.size()) + " estimates (the log's updates " +
+                  "span " + std::to_string(result.trajectory.front().stamp) + " to " +
+                  std::to_string(result.trajectory.back().stamp) + " s, the reference " +
+                  std::to_string(sorted_reference.front().stamp) + " to " +
+                  std::to_string(sorted_reference.back().stamp) +
+                  " s): is it the reference of another log?");
+    }
     result.particle_errors =
         compare_trajectories(result.particle_trajectory, sorted_reference, metrics);
     if (options.kidnapped_at) result.kidnap = kidnap_recovery(result, options, sorted_reference);

@@ -19,6 +19,7 @@
 #include "mote/replay/map_image.hpp"
 #include "mote/replay/profile.hpp"
 #include "mote/replay/report_json.hpp"
+#include "mote/replay/verdict.hpp"
 
 namespace mote::replay {
 namespace {
@@ -289,6 +290,7 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   write_laser_range(json, result);
   write_outcomes(json, result);
   write_states(json, result);
+  write_verdict_json(json, judge_run(result));
   write_errors(json, result);
   write_kidnap(json, result);
   if (result.range_table) write_range_table_json(json, *result.range_table);
@@ -323,6 +325,7 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "threads", std::to_string(result.threads));
   row(out, "particles (mean)", str(f.particles_mean, 0));
   row(out, "localization", state_text(result));
+  for (const auto& [name, value] : verdict_rows(judge_run(result))) row(out, name.c_str(), value);
   if (result.global_set.capped) {
     row(out, "global set",
         "capped at max_particles: " + std::to_string(result.global_set.particles) + " particles, " +
@@ -348,9 +351,20 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   if (!result.errors) return;
   const TrajectoryErrors& e = *result.errors;
   row(out, "matched poses", std::to_string(e.matched));
-  row(out, "ATE RMSE", str(e.ate_rmse_m, 4) + " m");
-  row(out, "heading RMSE", str(e.heading_rmse_deg, 3) + " deg");
   row(out, "converged", e.converged_at_s ? "yes, at " + str(*e.converged_at_s, 1) + " s" : "no");
+  // The whole run counts the updates before convergence (a global start's first, metres off).
+  const auto after = [&](double whole, const auto& field, int digits, const char* unit) {
+    std::string text = str(whole, digits) + unit + " whole run";
+    if (e.after_convergence)
+      text += ", " + str(field(*e.after_convergence), digits) + unit + " after";
+    return text;
+  };
+  row(out, "ATE RMSE",
+      after(
+          e.ate_rmse_m, [](const auto& a) { return a.ate_rmse_m; }, 4, " m"));
+  row(out, "heading RMSE",
+      after(
+          e.heading_rmse_deg, [](const auto& a) { return a.heading_rmse_deg; }, 3, " deg"));
   if (!result.kidnap) return;
   const KidnapRecovery& k = *result.kidnap;
   row(out, "kidnapped at",

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "mote/core/error.hpp"
@@ -29,7 +30,10 @@ void write_updates_csv(const std::filesystem::path& file, const ReplayResult& re
   out.precision(10);
   for (std::size_t k = 0; k < result.updates.size(); ++k) {
     const UpdateRecord& u = result.updates[k];
-    const Pose2& mean = result.particle_trajectory[k].pose;
+    // A result assembled by hand (tests, Python) may leave the particle trajectory empty.
+    constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+    const Pose2 mean = k < result.particle_trajectory.size() ? result.particle_trajectory[k].pose
+                                                             : Pose2{kNan, kNan, kNan};
     out << full(u.stamp) << ',' << u.particles << ',' << u.weighed << ',' << u.beams << ','
         << u.blocked_beams << ',' << u.effective_sample_size << ',' << u.tempering << ','
         << u.log_evidence << ',' << u.injected << ',' << u.relocalized << ','

@@ -1,6 +1,7 @@
 #pragma once
 // The mote tool's commands. Each returns the process exit status and throws UsageError (status 2)
-// or mote::Error (status 1) on failure; main() turns those into one line on stderr.
+// or mote::Error (status 1) on failure; main() turns those into one line on stderr. A replay that
+// finishes but ends lost returns replay::kExitEndsLost (3).
 
 #include <filesystem>
 #include <span>
@@ -30,5 +31,9 @@ int run_command(std::span<char* const> args);
 replay::ReplayResult replay_and_report(replay::ReplayOptions options,
                                        const std::filesystem::path& out_dir,
                                        const replay::ReportOptions& report = {});
+
+/// The verdict on a finished run: prints "mote COMMAND: warning: ..." on stderr and returns
+/// replay::kExitEndsLost when it ends lost, else returns 0.
+int warn_unless_localized(const char* command, const replay::ReplayResult& result);
 
 }  // namespace mote::tool

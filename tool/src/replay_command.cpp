@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "mote/maps/map_loader.hpp"
 #include "mote/replay/report.hpp"
+#include "mote/replay/verdict.hpp"
 #include "mote/replay/viewer.hpp"
 #include "progress.hpp"
 
@@ -62,7 +63,9 @@ constexpr std::string_view kUsage =
     "mote replay --map MAP.yaml --log LOG --out DIR [--reference REF.tum] [flags]";
 constexpr std::string_view kAbout =
     "Runs a recorded log through the particle filter and writes DIR/report.json (timings,\n"
-    "accuracy), DIR/trajectory.tum (estimate after every update) and DIR/map.png.";
+    "accuracy, the verdict), DIR/trajectory.tum (estimate after every update), DIR/updates.csv\n"
+    "and DIR/map.png. Exit status 0 when the run ends localized, 3 when it ends lost (the scans\n"
+    "do not fit the map: a warning says so), 1 on an error, 2 on a usage error.";
 
 Pose2 parse_pose(const ParsedArgs& args) {
   const std::string text = *args.text("init-pose");
@@ -170,6 +173,13 @@ replay::ReplayResult replay_and_report(replay::ReplayOptions options,
   return result;
 }
 
+int warn_unless_localized(const char* command, const replay::ReplayResult& result) {
+  const replay::RunVerdict verdict = replay::judge_run(result);
+  if (verdict.localized) return 0;
+  std::cerr << "mote " << command << ": warning: " << verdict.warning << '\n';
+  return replay::kExitEndsLost;
+}
+
 int replay_command(std::span<char* const> words) {
   const ParsedArgs args = parse_args("replay", words, kFlags);
   if (args.has("help")) {
@@ -195,7 +205,7 @@ int replay_command(std::span<char* const> words) {
     replay::print_summary(std::cout, result, report);
     std::cout << "  outputs               " << out.string() << '\n';
   }
-  return 0;
+  return warn_unless_localized("replay", result);
 }
 
 }  // namespace mote::tool

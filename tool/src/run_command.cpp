@@ -68,7 +68,7 @@ int run_command(std::span<char* const> words) {
       replay_and_report(run_options(args, files, sim_config.seed), out);
   replay::print_summary(std::cout, result);
   std::cout << "  outputs               " << std::filesystem::absolute(out).string() << '\n';
-  return 0;
+  return warn_unless_localized("run", result);
 }
 
 }  // namespace mote::tool
