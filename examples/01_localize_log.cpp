@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   }
   try {
     const mote::OccupancyGrid map = mote::load_map(argv[1]);
-    mote::LocalizerConfig config;  // nav2_amcl's defaults
+    mote::LocalizerConfig config;  // mote's defaults (mote::nav2_defaults() for nav2_amcl's)
     config.max_particles = 20000;
     mote::Localizer localizer(map, config);
     localizer.initialize_global();
@@ -25,10 +25,12 @@ int main(int argc, char** argv) {
     while (auto frame = log->next()) {
       if (!localizer.update(frame->odometry, frame->scan)) continue;
       if (++updates % 50 != 0) continue;
-      const mote::PoseEstimate& best = localizer.estimate().best();
-      std::printf("t=%.1f s  x=%.2f y=%.2f theta=%.2f  particles=%zu  update=%.2f ms\n",
-                  frame->stamp, best.mean.x, best.mean.y, best.mean.theta,
-                  localizer.last_update().particles, localizer.last_update().ms.total);
+      // The heaviest hypothesis matched to the map, and whether the scans fit the belief.
+      const mote::Pose2& pose = localizer.estimate().refined.pose;
+      const mote::UpdateStats& stats = localizer.last_update();
+      std::printf("t=%.1f s  x=%.2f y=%.2f theta=%.2f  %s  particles=%zu  update=%.2f ms\n",
+                  frame->stamp, pose.x, pose.y, pose.theta, mote::name_of(stats.state),
+                  stats.particles, stats.ms.total);
     }
     return 0;
   } catch (const std::exception& e) {

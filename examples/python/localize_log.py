@@ -25,13 +25,13 @@ def localize(grid, log_path):
     for stamp, odom, scan in mote.open_log(log_path):
         if not loc.update(odom, scan):
             continue
-        best = loc.estimate.best.mean
+        best = loc.estimate.refined.pose  # the heaviest hypothesis matched to the map
         trajectory.append((best.x, best.y))
         updates += 1
         if updates % 50 == 0:
             u = loc.last_update
             print(f"t={stamp:.1f} s  x={best.x:.2f} y={best.y:.2f} theta={best.theta:.2f}  "
-                  f"particles={u.particles}  update={u.ms.total:.2f} ms")
+                  f"{u.state.name.lower()}  particles={u.particles}  update={u.ms.total:.2f} ms")
     return np.array(trajectory), loc.particles.copy()
 
 

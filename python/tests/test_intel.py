@@ -41,7 +41,7 @@ def python_loop(intel, start):
                                            SIGMA_THETA * SIGMA_THETA]))
         loc.update(odom, scan)
         if loc.last_update.ran:
-            m = loc.estimate.best.mean
+            m = loc.estimate.refined.pose  # what the replay reports
             trajectory.append((stamp, m.x, m.y, m.theta))
     return np.array(trajectory), loc
 

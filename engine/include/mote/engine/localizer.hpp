@@ -50,7 +50,9 @@ struct LocalizationEstimate {
   PoseEstimate overall;                ///< the whole particle set
   std::vector<PoseEstimate> clusters;  ///< heaviest first
   /// The heaviest cluster's mean matched to the map with every valid reading of the last scan
-  /// (scan_match.hpp); its pose is the start pose when the scan had no endpoint.
+  /// (scan_match.hpp), where the cluster supports the match (a chi-square gate on their
+  /// covariances, docs/localization-state.md); else the mean itself with a zero covariance. Its
+  /// pose is the mean when the scan had no endpoint.
   ScanMatch refined;
   /// The heaviest cluster (amcl reports this one as the robot's pose).
   [[nodiscard]] const PoseEstimate& best() const noexcept {
