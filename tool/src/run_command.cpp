@@ -16,7 +16,7 @@ constexpr std::array<FlagSpec, 6> kFlags{{
     {"out", "DIR", "output folder (default ./mote-run)"},
     {"seconds", "S", "simulated time, s (default 60)"},
     {"seed", "N", "seed of the simulation and the filter (default 1)"},
-    {"max-particles", "N", "KLD upper bound, the global initialization's count (default 20000)"},
+    {"max-particles", "N", "KLD upper bound (default 500000, the library's)"},
     {"min-particles", "N", "KLD lower bound once converged (default 500)"},
     {"threads", "N", "worker threads, 0 = every core (default 0)"},
 }};
@@ -37,9 +37,10 @@ replay::ReplayOptions run_options(const ParsedArgs& args, const sim::SimulationF
   o.init = replay::InitMode::kGlobal;
   o.config.seed = seed;
   // Global localization spreads the first cloud over the whole floor plan (about 300 m^2 and
-  // every heading), so it starts large; KLD sampling (Fox 2003) shrinks it once it converges.
-  o.config.max_particles =
-      static_cast<int>(args.integer("max-particles", 1, 10'000'000).value_or(20'000));
+  // every heading), sized by global_particles_per_bin; KLD sampling (Fox 2003) shrinks it once
+  // it converges. The library's defaults, as a user's first run gets them.
+  o.config.max_particles = static_cast<int>(
+      args.integer("max-particles", 1, 10'000'000).value_or(LocalizerConfig{}.max_particles));
   o.config.min_particles =
       static_cast<int>(args.integer("min-particles", 1, 10'000'000).value_or(500));
   o.config.threads = static_cast<int>(args.integer("threads", 0, 1024).value_or(0));
