@@ -1,26 +1,36 @@
 # The two commands of the README: `make run` and `make test`. Both install missing Debian
-# packages, configure a Release build in build/ and build it. Plain CMake works too (README).
+# packages, configure a Release build in build/ and build it: `make run` only the mote tool
+# (scripts/install-deps run: no test, benchmark, Python or browser packages), `make test`
+# everything. Plain CMake works too (README).
 
 BUILD       ?= build
 JOBS        ?= $(shell nproc)
 CMAKE_FLAGS ?=
 CTEST_ARGS  ?=
 FUZZ_SECONDS ?= 30
+# What `make test` builds besides the libraries and the tool (`make run` turns them off).
+EVERYTHING  := -DMOTE_BUILD_TESTS=ON -DMOTE_BUILD_BENCH=ON -DMOTE_BUILD_EXAMPLES=ON
 
-.PHONY: all deps configure build run test bench fuzz tsan clean
+.PHONY: all deps deps-run configure build run test bench fuzz tsan clean
 
 all: build
 
 deps:
 	@scripts/install-deps
 
+deps-run:
+	@scripts/install-deps run
+
 configure: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(EVERYTHING) $(CMAKE_FLAGS)
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-run: build
+run: deps-run
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DMOTE_BUILD_TESTS=OFF \
+	  -DMOTE_BUILD_BENCH=OFF -DMOTE_BUILD_EXAMPLES=OFF $(CMAKE_FLAGS)
+	cmake --build $(BUILD) -j $(JOBS) --target mote_cli
 	$(BUILD)/tool/mote run
 
 test: build
