@@ -103,15 +103,15 @@ struct ReplayResult {
   /// The estimate after every update that ran: the heaviest cluster's mean matched to the map
   /// (LocalizationEstimate::refined).
   std::vector<logs::StampedPose> trajectory;
-  std::vector<logs::StampedPose> particle_trajectory;       ///< the heaviest cluster's mean itself
-  std::vector<UpdateRecord> updates;                  ///< one per update that ran
-  std::array<std::size_t, kOutcomeCount> outcomes{};  ///< update() calls by UpdateOutcome
-  std::string first_unusual_reason;                   ///< reason of the first non-normal outcome
-  logs::ReadStats reader;                             ///< what the log reader skipped
+  std::vector<logs::StampedPose> particle_trajectory;  ///< the heaviest cluster's mean itself
+  std::vector<UpdateRecord> updates;                   ///< one per update that ran
+  std::array<std::size_t, kOutcomeCount> outcomes{};   ///< update() calls by UpdateOutcome
+  std::string first_unusual_reason;                    ///< reason of the first non-normal outcome
+  logs::ReadStats reader;                              ///< what the log reader skipped
   float laser_range_max = 0.0F;  ///< m, range_max of the first scan (the laser's no-return value)
-  std::string laser_range_max_source;      ///< where it came from (ScanSource::range_max_source)
-  std::vector<logs::StampedPose> reference;      ///< the reference trajectory (may be empty)
-  std::optional<TrajectoryErrors> errors;  ///< with a reference
+  std::string laser_range_max_source;        ///< where it came from (ScanSource::range_max_source)
+  std::vector<logs::StampedPose> reference;  ///< the reference trajectory (may be empty)
+  std::optional<TrajectoryErrors> errors;    ///< with a reference
   std::optional<TrajectoryErrors> particle_errors;  ///< of particle_trajectory, with a reference
   std::optional<KidnapRecovery> kidnap;             ///< with a reference and kidnapped_at
   std::vector<Pose2> final_particles;               ///< the particle cloud after the last scan
