@@ -75,6 +75,7 @@ bench: deps
 # fails on any finding. The corpus grows in build-fuzz/fuzz-corpus between runs.
 fuzz: deps
 	cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
 	  -DMOTE_BUILD_FUZZERS=ON -DMOTE_BUILD_TESTS=OFF -DMOTE_BUILD_BENCH=OFF \
 	  -DMOTE_BUILD_EXAMPLES=OFF -DMOTE_BUILD_TOOL=OFF -DMOTE_NATIVE=OFF $(CMAKE_FLAGS)
 	cmake --build build-fuzz -j $(JOBS)
