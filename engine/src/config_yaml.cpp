@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "mote/core/did_you_mean.hpp"
 #include "mote/core/error.hpp"
 #include "mote/engine/localizer_config.hpp"
 
@@ -235,7 +236,13 @@ void apply_key(LocalizerConfig& config, const std::string& key, const YAML::Node
         name, place_of(value, key),
         "beam skipping is not implemented (unmapped_obstacle_filter does its job); key ignored"));
   } else if (!is_ros_only(key)) {
-    warnings.push_back(warning(name, place_of(value, key), "unknown key ignored"));
+    // A typo must not run on with the default: the run would answer another question.
+    std::vector<std::string_view> known;
+    for (const Key& k : keys()) known.emplace_back(k.name);
+    const std::string best = closest_word(key, known);
+    throw InputError(name, place_of(value, key),
+                     best.empty() ? "unknown key (the keys are in README, Configuration)"
+                                  : "unknown key (did you mean '" + best + "'?)");
   }
 }
 

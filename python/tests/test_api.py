@@ -58,7 +58,13 @@ def test_load_config(tmp_path):
     c = mote.load_config(str(f))
     assert c.max_particles == 3000 and c.alpha2 == 0.1
     f.write_text("max_particles: 3000\nbogus_key: 1\n")
-    with pytest.warns(UserWarning, match="bogus_key"):
+    with pytest.raises(mote.InputError, match="line 2, key 'bogus_key': unknown key"):
+        mote.load_config(str(f))
+    f.write_text("max_partcles: 3000\n")  # a typo: the error names the key it meant
+    with pytest.raises(mote.InputError, match="did you mean 'max_particles'"):
+        mote.load_config(str(f))
+    f.write_text("max_particles: 3000\ndo_beamskip: true\n")  # amcl's, not implemented
+    with pytest.warns(UserWarning, match="do_beamskip"):
         mote.load_config(str(f))
 
 

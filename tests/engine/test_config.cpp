@@ -63,10 +63,27 @@ TEST(LoadConfig, TunedNav2FileOverridesEveryValue) {
   EXPECT_DOUBLE_EQ(c.lambda_short, 0.2);
   EXPECT_DOUBLE_EQ(c.laser_min_range, 0.4);
   EXPECT_DOUBLE_EQ(c.laser_max_range, 30.0);
-  ASSERT_EQ(loaded.warnings.size(), 2U);
+  ASSERT_EQ(loaded.warnings.size(), 1U);
   EXPECT_THAT(loaded.warnings[0], HasSubstr("do_beamskip"));
-  EXPECT_THAT(loaded.warnings[1], HasSubstr("'my_custom_key': unknown key ignored"));
-  EXPECT_THAT(loaded.warnings[1], HasSubstr("nav2_params_tuned.yaml: line 31"));
+  EXPECT_THAT(loaded.warnings[0], HasSubstr("nav2_params_tuned.yaml: line 30"));
+}
+
+// An unknown key is an error naming file, line and key, with the key it was a typo of.
+TEST(ParseConfig, UnknownKeysAreErrorsWithTheClosestKey) {
+  const auto message = [](const std::string& yaml) {
+    try {
+      (void)parse_config(yaml, "typo.yaml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(message("alpha1: 0.2\nsigma_hitt: 0.1\n"),
+              HasSubstr("typo.yaml: line 2, key 'sigma_hitt': unknown key (did you mean "
+                        "'sigma_hit'?)"));
+  EXPECT_THAT(message("min_partciles: 100\n"), HasSubstr("did you mean 'min_particles'?"));
+  EXPECT_THAT(message("completely_unrelated_key: 1\n"), Not(HasSubstr("did you mean")));
+  EXPECT_THAT(message("completely_unrelated_key: 1\n"), HasSubstr("unknown key"));
 }
 
 TEST(ParseConfig, FlatMoteFileReadsMoteKeys) {

@@ -107,6 +107,8 @@ std::vector<BadFile> bad_files() {
       {"config", "key_config.yaml", "? [a, b]\n: 1\n", ""},
       {"config", "huge_config.yaml", "max_particles: 1000000000\n", ""},
       {"config", "newline_config.yaml", "sigma_hit: \"a\\nb\"\n", ""},
+      {"config", "typo_config.yaml", "sigma_hitt: 0.1\n", ""},
+      {"config", "unknown_config.yaml", "frobnicate: 1\n", ""},
   };
 }
 

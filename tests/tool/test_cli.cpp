@@ -111,6 +111,17 @@ TEST(Cli, BadUsageExitsWithTwoAndOneLine) {
   }
 }
 
+TEST(Cli, AMisspelledFlagGetsTheFlagItMeant) {
+  const Outcome typo = mote("replay --map m.yaml --log l.clf --out d --partciles 500");
+  EXPECT_EQ(typo.status, 2);
+  EXPECT_NE(typo.err.find("unknown flag '--partciles' (did you mean '--particles'?)"),
+            std::string::npos)
+      << typo.err;
+  const Outcome unrelated = mote("replay --map m.yaml --log l.clf --out d --frobnicate 1");
+  EXPECT_EQ(unrelated.status, 2);
+  EXPECT_EQ(unrelated.err.find("did you mean"), std::string::npos) << unrelated.err;
+}
+
 TEST(Cli, BadInputExitsWithOneNamingTheFile) {
   const fs::path dir = scratch("bad_input");
   const fs::path yaml = dir / "broken.yaml";

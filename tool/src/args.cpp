@@ -6,6 +6,10 @@
 #include <cmath>
 #include <iomanip>
 #include <ostream>
+#include <string>
+#include <vector>
+
+#include "mote/core/did_you_mean.hpp"
 
 namespace mote::tool {
 namespace {
@@ -14,6 +18,14 @@ const FlagSpec* find_spec(std::span<const FlagSpec> specs, std::string_view name
   const auto it =
       std::find_if(specs.begin(), specs.end(), [&](const FlagSpec& s) { return s.name == name; });
   return it == specs.end() ? nullptr : &*it;
+}
+
+// " (did you mean '--particles'?)" for a flag a typo away from a known one, else "".
+std::string suggest(std::span<const FlagSpec> specs, std::string_view name) {
+  std::vector<std::string_view> names;
+  for (const FlagSpec& s : specs) names.push_back(s.name);
+  const std::string best = closest_word(name, names);
+  return best.empty() ? "" : " (did you mean '--" + best + "'?)";
 }
 
 UsageError usage(std::string_view command, const std::string& problem) {
@@ -92,7 +104,8 @@ ParsedArgs parse_args(std::string_view command, std::span<char* const> args,
       values["help"] = "";
       continue;
     }
-    if (spec == nullptr) throw usage(command, "unknown flag '--" + name + "'");
+    if (spec == nullptr)
+      throw usage(command, "unknown flag '--" + name + "'" + suggest(specs, name));
     if (spec->value.empty()) {
       if (inline_value) throw usage(command, "--" + name + " takes no value");
       values[name] = "";
