@@ -112,6 +112,7 @@ LocalizerConfig nav2_defaults() {
   c.unmapped_obstacle_filter = false;
   c.relocalize_when_lost = false;
   c.unknown_cells_block_rays = true;
+  c.ray_casting = RayCasting::kExact;  // amcl's map_calc_range casts every ray
   // amcl's formulas: 1 + sum pz^3 for both models, a resample at every update
   // (resample_interval 1, no ESS gate), and pf_z read as the quantile itself.
   c.likelihood_combination = LikelihoodCombination::kAmclCubedSum;

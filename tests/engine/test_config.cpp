@@ -241,7 +241,8 @@ namespace {
 
 // Issue 19: the beam model's ray_casting switch and the range table's angles and budget.
 TEST(ParseConfig, RayCastingSelectsExactOrTable) {
-  EXPECT_EQ(LocalizerConfig{}.ray_casting, RayCasting::kExact) << "exact stays the default";
+  EXPECT_EQ(LocalizerConfig{}.ray_casting, RayCasting::kTable) << "the table is the default";
+  EXPECT_EQ(nav2_defaults().ray_casting, RayCasting::kExact) << "amcl casts every ray";
   const LoadedConfig loaded = parse_config(
       "ray_casting: table\nrange_table_angles: 256\nrange_table_budget_mb: 64\n", "t.yaml");
   EXPECT_EQ(loaded.config.ray_casting, RayCasting::kTable);

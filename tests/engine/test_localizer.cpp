@@ -87,6 +87,7 @@ TEST_F(LocalizerOnIntel, LikelihoodFieldTracksWithin5cmAnd1Degree) {
 TEST_F(LocalizerOnIntel, BeamModelTracksWithin5cmAnd1Degree) {
   LocalizerConfig config = tracking_config(2000);
   config.laser_model_type = LaserModel::kBeam;
+  config.ray_casting = RayCasting::kExact;
   const auto [xy, theta] = track(config, 40);
   EXPECT_LT(xy, 0.05);
   EXPECT_LT(theta, 1.0 * kDeg);

@@ -108,19 +108,18 @@ void expect_intel_defaults(const std::string& model, double ate_m, double headin
   EXPECT_LE(json_number(report, "heading_rmse_deg"), heading_deg);
 }
 
-// Issue 19: the beam model with the range table tracks Intel within 5% of the exact beam
-// model's ATE (same defaults, seed and particles; replay/configs/beam-table.yaml changes only
-// where the expected ranges come from), and report.json says what the table cost.
+// The beam model with the range table (the default) tracks Intel within 5% of the exact beam
+// model's ATE (same defaults, seed and particles; `ray_casting: exact` changes only where the
+// expected ranges come from), and report.json says what the table cost.
 TEST(Cli, IntelBeamModelWithTheRangeTableTracksAsExactCasting) {
   MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
   const fs::path data = yaml.parent_path();
+  const fs::path exact_yaml = scratch("intel-beam-exact-config") / "exact.yaml";
+  std::ofstream(exact_yaml) << "ray_casting: exact\n";
   std::array<double, 2> ate{};
   for (const bool table : {false, true}) {
     const fs::path out = scratch(table ? "intel-beam-table" : "intel-beam-exact");
-    const std::string config =
-        table ? " --config '" +
-                    (fs::path(MOTE_SOURCE_DIR) / "replay/configs/beam-table.yaml").string() + "'"
-              : std::string();
+    const std::string config = table ? std::string() : " --config '" + exact_yaml.string() + "'";
     const Outcome o =
         mote("replay --map '" + yaml.string() + "' --log '" + (data / "intel.clf").string() +
              "' --reference '" + (data / "intel.gt.tum").string() +
