@@ -167,8 +167,8 @@ void note_bounds(FitQuality& q, const char* model, const std::vector<double>& al
 // the alphas from all three channels with the biases held there. The direction channel's
 // regressor (the motion's rot1) and table 5.6's variance terms (rot1, rot2) carry the poses'
 // position noise over the distance, and a joint fit trades that noise against the rotation
-// scale error (errors in variables: +0.01 to +0.04 on the simulated robots, README
-// "Calibrating"); the heading's regressor, the whole rotation, is large against the noise.
+// scale error (errors in variables: +0.01 to +0.04 on the simulated robots, docs/
+// calibration.md); the heading's regressor, the whole rotation, is large against the noise.
 // Each figure's standard error is that of its own stage.
 void fit_biases_then_alphas(const std::vector<MotionResidual>& rs, double pose_max,
                             OdometryFit& fit, int& evals) {

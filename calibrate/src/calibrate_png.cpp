@@ -1,4 +1,4 @@
-// DIR/calibration.png, three panels side by side (no text; README.md explains the axes):
+// DIR/calibration.png, three panels side by side (no text; docs/calibration.md explains the axes):
 //  1. the measured range error z - z* (-2 m .. +1 m, log-scale counts) as grey bars with the
 //     fitted beam mixture's density over it (red), as Thrun et al. show it in figure 6.4;
 //  2. heading residual of each odometry increment (-0.3 .. 0.3 rad) against the increment's

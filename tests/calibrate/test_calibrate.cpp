@@ -155,8 +155,8 @@ TEST(CalibrateSimulated, RecoversKnownParametersWithReference) {
 
 // Without the reference the filter's own trajectory stands in, and its poses' position noise
 // (1-1.5 cm) costs the odometry fit information: at 900 increments alpha2's and alpha4's standard
-// errors are 6% and 15-20% of them and the bounds one to two standard errors (README
-// "Calibrating"), so these logs are three times as long (2700 scans): their errors are 0.64-0.86
+// errors are 6% and 15-20% of them and the bounds one to two standard errors (docs/
+// calibration.md), so these logs are three times as long (2700 scans): their errors are 0.64-0.86
 // of those against the reference at 900 (modest robot). What the longer log cannot fix, a
 // systematic shift, the fit must not have: the rotation scale error comes from the heading
 // channel and alpha4's turns from the odometry's split of the rotation

@@ -4,7 +4,7 @@
 /// nav2_amcl) where they overlap. The defaults are mote's own: mechanisms that adapt to the
 /// sensor and map (adaptive tempering, recovery, a global set sized to the map) instead of
 /// nav2's constants; nav2_defaults() gives nav2_amcl's values. The differences are listed in
-/// README.md ("Differences from amcl").
+/// docs/configuration.md ("Differences from amcl").
 
 #include <cstddef>
 #include <cstdint>
