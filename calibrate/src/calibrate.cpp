@@ -380,7 +380,8 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
       break;
     }
   }
-  if (result.config.adaptive_motion_noise && result.config.odom_model_type == OdomModel::kDiff) {
+  if (options.search_margin && result.config.adaptive_motion_noise &&
+      result.config.odom_model_type == OdomModel::kDiff) {
     choose_margin(map, field, frames, options, range_max, track_start, result);
   }
   result.samples.range_max = range_max;

@@ -244,6 +244,10 @@ struct CalibrationOptions {
   /// Particles of the margin search's tracking runs (min = max); 0 keeps the config's KLD
   /// bounds. The margin that tracks best depends on it: calibrate for the count you will run.
   int particles = 0;
+  /// Search the online noise's margin after the rounds (MarginTrial, at least six tracking runs
+  /// over the log). Off, the config keeps its margin and CalibrationResult::margins is empty:
+  /// for callers that want the fits alone.
+  bool search_margin = true;
   CalibrationProgress progress;
 };
 
@@ -275,7 +279,8 @@ struct CalibrationResult {
   bool settled = false;  ///< self-calibration stopped because the parameters settled
   /// The margin search (MarginTrial): tracking runs with the final config from the last round's
   /// first converged estimate (the reference's first pose with --reference); empty when the
-  /// config's model does not adapt its noise (adaptive_motion_noise, diff model only).
+  /// config's model does not adapt its noise (adaptive_motion_noise, diff model only) or
+  /// CalibrationOptions::search_margin is off.
   std::vector<MarginTrial> margins;
   CalibrationSamples samples;
   double wall_s = 0;
