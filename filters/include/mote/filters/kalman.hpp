@@ -54,9 +54,7 @@ class KalmanFilter {
     check("KalmanFilter::predict", "B", b, size(), u.rows());
     check("KalmanFilter::predict", "u", u, b.cols(), 1);
     check("KalmanFilter::predict", "Q", q, size(), size());
-    mean_ = a * mean_ + b * u;
-    cov_ = a * cov_ * a.transpose() + q;
-    symmetrize();
+    predict_checked(a, Vector(b * u), q);
   }
 
   /// Prediction without a control input: mu = A mu, Sigma = A Sigma A^T + Q.
@@ -64,9 +62,7 @@ class KalmanFilter {
   void predict(const Eigen::MatrixBase<DA>& a, const Eigen::MatrixBase<DQ>& q) {
     check("KalmanFilter::predict", "A", a, size(), size());
     check("KalmanFilter::predict", "Q", q, size(), size());
-    mean_ = a * mean_;
-    cov_ = a * cov_ * a.transpose() + q;
-    symmetrize();
+    predict_checked(a, Vector::Zero(size()), q);
   }
 
   /// Table 3.1, lines 4-6, with the Joseph form (I - K C) Sigma (I - K C)^T + K R K^T for the
@@ -79,6 +75,22 @@ class KalmanFilter {
     check("KalmanFilter::correct", "z", z, z.rows(), 1);
     check("KalmanFilter::correct", "C", c, z.rows(), size());
     check("KalmanFilter::correct", "R", r, z.rows(), z.rows());
+    return correct_checked(z, c, r);
+  }
+
+ private:
+  // The bodies take evaluated matrices (or references to them), so that each KalmanFilter<N>
+  // compiles them once whatever expressions the callers pass (a body per argument type made this
+  // header the slowest file of the test build to compile).
+  void predict_checked(const Matrix& a, const Vector& bu, const Matrix& q) {
+    mean_ = a * mean_ + bu;
+    cov_ = a * cov_ * a.transpose() + q;
+    symmetrize();
+  }
+
+  KalmanInnovation correct_checked(Eigen::Ref<const Eigen::VectorXd> z,
+                                   Eigen::Ref<const Eigen::MatrixXd> c,
+                                   Eigen::Ref<const Eigen::MatrixXd> r) {
     KalmanInnovation out;
     out.innovation = z - c * mean_;
     out.covariance = c * cov_ * c.transpose() + r;
@@ -98,7 +110,6 @@ class KalmanFilter {
     return out;
   }
 
- private:
   template <class D>
   static void check(const char* call, const char* name, const Eigen::MatrixBase<D>& m,
                     Eigen::Index rows, Eigen::Index cols) {
