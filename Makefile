@@ -71,15 +71,15 @@ bench: deps
 	    $(BENCH_DATA) $(BENCH_OUT)/python.json; \
 	else echo "bench: Python package not built (MOTE_BUILD_PYTHON off): bench_python.py skipped"; fi
 
-# Every reader's libFuzzer target for FUZZ_SECONDS each, under ASan + UBSan, in build-fuzz (clang);
-# fails on any finding. The corpus grows in build-fuzz/fuzz-corpus between runs.
+# Every reader's libFuzzer target for FUZZ_SECONDS each, JOBS at a time, under ASan + UBSan, in
+# build-fuzz (clang); fails on any finding. The corpus grows in build-fuzz/fuzz-corpus between runs.
 fuzz: deps
 	cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
 	  -DMOTE_BUILD_FUZZERS=ON -DMOTE_BUILD_TESTS=OFF -DMOTE_BUILD_BENCH=OFF \
 	  -DMOTE_BUILD_EXAMPLES=OFF -DMOTE_BUILD_TOOL=OFF -DMOTE_NATIVE=OFF $(CMAKE_FLAGS)
-	cmake --build build-fuzz -j $(JOBS)
-	tests/fuzz/run-fuzzers build-fuzz $(FUZZ_SECONDS)
+	cmake --build build-fuzz -j $(JOBS) --target fuzzers
+	FUZZ_JOBS=$(JOBS) tests/fuzz/run-fuzzers build-fuzz $(FUZZ_SECONDS)
 
 # The engine and Localizer tests under ThreadSanitizer (clang) in build-tsan; see .ci/tsan.
 tsan: deps
