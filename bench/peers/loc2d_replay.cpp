@@ -1,0 +1,209 @@
+// loc2d_replay: iris_lama's Loc2D (https://github.com/iris-ua/iris_lama) run over a recorded log
+// as its ROS node (iris_lama_ros, loc2d_ros.cpp) runs it, but fed by mote's log readers and scored
+// by mote's ATE code, so bench/compare-loc2d compares the two localizers and nothing else.
+//
+//   loc2d_replay --map MAP.yaml --log LOG --reference REF.tum [--out TRAJ.tum]
+//
+// Prints one JSON object: scans, updates, ATE, heading and largest error, the final error, and
+// the wall time of Loc2D::update per update (mean, p50, p99, max, ms; one thread: Loc2D has none).
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lama/loc2d.h"
+#include "lama/pose2d.h"
+#include "mote/core/error.hpp"
+#include "mote/logs/scan_source.hpp"
+#include "mote/logs/tum.hpp"
+#include "mote/maps/map_loader.hpp"
+#include "mote/replay/metrics.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Args {
+  std::filesystem::path map;
+  std::filesystem::path log;
+  std::filesystem::path reference;
+  std::filesystem::path out;  // the estimate after every update (TUM); empty = none
+};
+
+[[noreturn]] void usage(const std::string& problem) {
+  std::fprintf(stderr,
+               "loc2d_replay: %s\nusage: loc2d_replay --map MAP.yaml --log LOG --reference "
+               "REF.tum [--out TRAJ.tum]\n",
+               problem.c_str());
+  std::exit(2);
+}
+
+Args parse(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; i += 2) {
+    const std::string_view key = argv[i];
+    if (i + 1 >= argc) usage(std::string(key) + " needs a value");
+    const char* value = argv[i + 1];
+    if (key == "--map") {
+      a.map = value;
+    } else if (key == "--log") {
+      a.log = value;
+    } else if (key == "--reference") {
+      a.reference = value;
+    } else if (key == "--out") {
+      a.out = value;
+    } else {
+      usage("unknown argument " + std::string(key));
+    }
+  }
+  if (a.map.empty() || a.log.empty() || a.reference.empty()) usage("--map, --log, --reference");
+  return a;
+}
+
+// The ROS node's defaults (loc2d_ros.cpp): d_thresh 0.1 m, a_thresh 0.2 rad, l2_max 0.5 m,
+// patch_size 32, Gauss-Newton; the map's resolution.
+lama::Loc2D::Options node_options(double resolution) {
+  lama::Loc2D::Options o;
+  o.trans_thresh = 0.1;
+  o.rot_thresh = 0.2;
+  o.l2_max = 0.5;
+  o.patch_size = 32;
+  o.strategy = "gn";
+  o.gloc_iters = 20;
+  o.resolution = resolution;
+  return o;
+}
+
+// The node's InitLoc2DFromOccupancyGridMsg: cell (i, j) at origin + (i, j) * resolution (its
+// lower-left corner; the node ignores the origin's yaw), free cells marked free, occupied cells
+// marked occupied and made obstacles of the distance map, unknown cells left alone.
+void load_grid(lama::Loc2D& loc, const mote::OccupancyGrid& grid) {
+  if (grid.origin().theta != 0.0) {
+    throw mote::Error("loc2d_replay: the map's origin has a yaw, which Loc2D's ROS node ignores");
+  }
+  const double res = grid.resolution();
+  for (int j = 0; j < grid.height(); ++j) {
+    for (int i = 0; i < grid.width(); ++i) {
+      const Eigen::Vector3d at(grid.origin().x + i * res, grid.origin().y + j * res, 0.0);
+      const mote::CellState cell = grid.at({i, j});
+      if (cell == mote::CellState::kFree) {
+        loc.occupancy_map->setFree(at);
+      } else if (cell == mote::CellState::kOccupied) {
+        loc.occupancy_map->setOccupied(at);
+        loc.distance_map->addObstacle(loc.distance_map->w2m(at));
+      }
+    }
+  }
+  loc.distance_map->update();
+}
+
+// The node's onLaserScan: every beam (beam_step 1) that is finite and strictly between
+// range_min and range_max (mrange 0: the scan's own range_max, which mote's reader gives), as a
+// point in the laser frame; the laser's mounting pose as the cloud's sensor origin.
+lama::PointCloudXYZ::Ptr to_cloud(const mote::LaserScan& scan) {
+  auto cloud = std::make_shared<lama::PointCloudXYZ>();
+  cloud->sensor_origin_ = Eigen::Vector3d(scan.sensor_pose.x, scan.sensor_pose.y, 0.0);
+  cloud->sensor_orientation_ =
+      Eigen::Quaterniond(Eigen::AngleAxisd(scan.sensor_pose.theta, Eigen::Vector3d::UnitZ()));
+  cloud->points.reserve(scan.size());
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const double range = scan.ranges[i];
+    if (!std::isfinite(range) || range >= scan.range_max || range <= scan.range_min) continue;
+    const double angle = static_cast<double>(scan.angle_min) +
+                         static_cast<double>(i) * static_cast<double>(scan.angle_increment);
+    cloud->points.emplace_back(range * std::cos(angle), range * std::sin(angle), 0.0);
+  }
+  return cloud;
+}
+
+// As `mote replay --reference` starts tracking (replay_run.cpp): the reference pose nearest the
+// first scan's stamp within the match tolerance, else the reference's first pose.
+mote::Pose2 start_pose(const std::vector<mote::logs::StampedPose>& sorted_reference,
+                       double first_stamp) {
+  const auto match = mote::logs::match_reference(sorted_reference, first_stamp,
+                                                 mote::logs::kReferenceMatchTolerance);
+  return match ? match->pose : sorted_reference.front().pose;
+}
+
+struct Run {
+  std::size_t scans = 0;
+  std::vector<mote::logs::StampedPose> trajectory;  // the pose after every update, at its scan
+  std::vector<double> update_ms;                    // Loc2D::update of every matching update
+  double first_stamp = 0.0;
+};
+
+Run run(const Args& args, const std::vector<mote::logs::StampedPose>& sorted_reference) {
+  const mote::OccupancyGrid grid = mote::load_map(args.map);
+  lama::Loc2D loc;
+  loc.Init(node_options(grid.resolution()));
+  load_grid(loc, grid);
+  const auto source = mote::logs::open_scan_log(args.log, {});
+  Run r;
+  while (const std::optional<mote::logs::ScanFrame> frame = source->next()) {
+    if (r.scans++ == 0) {
+      r.first_stamp = frame->stamp;
+      const mote::Pose2 p = start_pose(sorted_reference, frame->stamp);
+      loc.setPose(lama::Pose2D(p.x, p.y, p.theta));
+    }
+    const lama::Pose2D odom(frame->odometry.x, frame->odometry.y, frame->odometry.theta);
+    if (!loc.enoughMotion(odom)) continue;
+    const bool first = r.trajectory.empty();  // Loc2D's first update only stores the odometry
+    const lama::PointCloudXYZ::Ptr cloud = to_cloud(frame->scan);
+    const auto start = Clock::now();
+    loc.update(cloud, odom, frame->stamp);
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (!first) r.update_ms.push_back(ms);
+    const lama::Pose2D& pose = loc.getPose();
+    r.trajectory.push_back({frame->stamp, {pose.x(), pose.y(), pose.rotation()}});
+  }
+  return r;
+}
+
+// m: the last estimate's distance to the reference pose at its stamp (NaN without one).
+double final_error(const Run& r, const std::vector<mote::logs::StampedPose>& sorted_reference) {
+  if (r.trajectory.empty()) return std::nan("");
+  const mote::logs::StampedPose& last = r.trajectory.back();
+  const auto ref = mote::logs::match_reference(sorted_reference, last.stamp,
+                                               mote::logs::kReferenceMatchTolerance);
+  if (!ref) return std::nan("");
+  return std::hypot(last.pose.x - ref->pose.x, last.pose.y - ref->pose.y);
+}
+
+void print_json(const Run& r, const mote::replay::TrajectoryErrors& e, double final_m) {
+  const mote::replay::Percentiles t = mote::replay::summarize(r.update_ms);
+  std::printf(
+      "{\"peer\": \"iris_lama Loc2D\", \"threads\": 1, \"scans\": %zu, \"updates\": %zu, "
+      "\"matched\": %zu, \"ate_rmse_m\": %.6f, \"heading_rmse_deg\": %.4f, \"max_error_m\": %.4f, "
+      "\"final_error_m\": %.4f, \"update_ms\": {\"mean\": %.4f, \"p50\": %.4f, \"p99\": %.4f, "
+      "\"max\": %.4f}}\n",
+      r.scans, r.trajectory.size(), e.matched, e.ate_rmse_m, e.heading_rmse_deg, e.max_error_m,
+      final_m, t.mean, t.p50, t.p99, t.max);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Args args = parse(argc, argv);
+    const auto sorted_reference = mote::logs::sort_by_stamp(mote::logs::read_tum(args.reference));
+    const Run r = run(args, sorted_reference);
+    mote::replay::MetricOptions metrics;
+    metrics.start_stamp = r.first_stamp;
+    const mote::replay::TrajectoryErrors errors =
+        mote::replay::compare_trajectories(r.trajectory, sorted_reference, metrics);
+    if (!args.out.empty()) mote::logs::write_tum(args.out, r.trajectory);
+    print_json(r, errors, final_error(r, sorted_reference));
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "loc2d_replay: %s\n", e.what());
+    return 1;
+  }
+}
