@@ -3,6 +3,7 @@
 // by mote's ATE code, so bench/compare-loc2d compares the two localizers and nothing else.
 //
 //   loc2d_replay --map MAP.yaml --log LOG --reference REF.tum [--out TRAJ.tum]
+//                [--map-cells centres|corners]
 //
 // Prints one JSON object: scans, updates, ATE, heading and largest error, the final error, and
 // the wall time of Loc2D::update per update (mean, p50, p99, max, ms; one thread: Loc2D has none).
@@ -36,12 +37,13 @@ struct Args {
   std::filesystem::path log;
   std::filesystem::path reference;
   std::filesystem::path out;  // the estimate after every update (TUM); empty = none
+  bool node_corners = false;  // --map-cells corners: cells where the ROS node puts them
 };
 
 [[noreturn]] void usage(const std::string& problem) {
   std::fprintf(stderr,
                "loc2d_replay: %s\nusage: loc2d_replay --map MAP.yaml --log LOG --reference "
-               "REF.tum [--out TRAJ.tum]\n",
+               "REF.tum [--out TRAJ.tum] [--map-cells centres|corners]\n",
                problem.c_str());
   std::exit(2);
 }
@@ -60,6 +62,11 @@ Args parse(int argc, char** argv) {
       a.reference = value;
     } else if (key == "--out") {
       a.out = value;
+    } else if (key == "--map-cells") {
+      if (std::string_view(value) != "centres" && std::string_view(value) != "corners") {
+        usage("--map-cells is centres or corners");
+      }
+      a.node_corners = std::string_view(value) == "corners";
     } else {
       usage("unknown argument " + std::string(key));
     }
@@ -82,17 +89,44 @@ lama::Loc2D::Options node_options(double resolution) {
   return o;
 }
 
-// The node's InitLoc2DFromOccupancyGridMsg: cell (i, j) at origin + (i, j) * resolution (its
-// lower-left corner; the node ignores the origin's yaw), free cells marked free, occupied cells
-// marked occupied and made obstacles of the distance map, unknown cells left alone.
-void load_grid(lama::Loc2D& loc, const mote::OccupancyGrid& grid) {
+// Loc2D's maps hold values at the points k * resolution of their own frame (a world point goes
+// to the nearest one), whatever the map's origin. The node's InitLoc2DFromOccupancyGridMsg
+// places cell (i, j) at origin + (i, j) * resolution, its lower-left corner (and ignores the
+// origin's yaw), so unless the origin is a multiple of the resolution every wall lands up to a
+// cell away from where the map draws it, towards the lower left by half a cell on average: a
+// bias of the map's origin, not of the matcher. By default the driver runs Loc2D in the map
+// frame shifted so that cell (i, j)'s centre is the point (i, j) * resolution exactly, and shifts
+// the start pose and the estimates by the same offset; `--map-cells corners` does as the node.
+struct MapFrame {
+  double dx = 0.0;  // m, Loc2D's frame origin in the map frame
+  double dy = 0.0;
+  double cell_x0 = 0.0;  // m, where cell (0, 0) goes in Loc2D's frame
+  double cell_y0 = 0.0;
+
+  [[nodiscard]] lama::Pose2D to_loc2d(const mote::Pose2& p) const {
+    return {p.x - dx, p.y - dy, p.theta};
+  }
+  [[nodiscard]] mote::Pose2 from_loc2d(const lama::Pose2D& p) const {
+    return {p.x() + dx, p.y() + dy, p.rotation()};
+  }
+};
+
+MapFrame map_frame(const mote::OccupancyGrid& grid, bool node_corners) {
   if (grid.origin().theta != 0.0) {
     throw mote::Error("loc2d_replay: the map's origin has a yaw, which Loc2D's ROS node ignores");
   }
+  const double half = 0.5 * grid.resolution();
+  if (node_corners) return {0.0, 0.0, grid.origin().x, grid.origin().y};
+  return {grid.origin().x + half, grid.origin().y + half, 0.0, 0.0};
+}
+
+// Free cells marked free, occupied cells marked occupied and made obstacles of the distance
+// map, unknown cells left alone, as the node does.
+void load_grid(lama::Loc2D& loc, const mote::OccupancyGrid& grid, const MapFrame& frame) {
   const double res = grid.resolution();
   for (int j = 0; j < grid.height(); ++j) {
     for (int i = 0; i < grid.width(); ++i) {
-      const Eigen::Vector3d at(grid.origin().x + i * res, grid.origin().y + j * res, 0.0);
+      const Eigen::Vector3d at(frame.cell_x0 + i * res, frame.cell_y0 + j * res, 0.0);
       const mote::CellState cell = grid.at({i, j});
       if (cell == mote::CellState::kFree) {
         loc.occupancy_map->setFree(at);
@@ -144,25 +178,24 @@ Run run(const Args& args, const std::vector<mote::logs::StampedPose>& sorted_ref
   const mote::OccupancyGrid grid = mote::load_map(args.map);
   lama::Loc2D loc;
   loc.Init(node_options(grid.resolution()));
-  load_grid(loc, grid);
+  const MapFrame frame = map_frame(grid, args.node_corners);
+  load_grid(loc, grid, frame);
   const auto source = mote::logs::open_scan_log(args.log, {});
   Run r;
-  while (const std::optional<mote::logs::ScanFrame> frame = source->next()) {
+  while (const std::optional<mote::logs::ScanFrame> scan = source->next()) {
     if (r.scans++ == 0) {
-      r.first_stamp = frame->stamp;
-      const mote::Pose2 p = start_pose(sorted_reference, frame->stamp);
-      loc.setPose(lama::Pose2D(p.x, p.y, p.theta));
+      r.first_stamp = scan->stamp;
+      loc.setPose(frame.to_loc2d(start_pose(sorted_reference, scan->stamp)));
     }
-    const lama::Pose2D odom(frame->odometry.x, frame->odometry.y, frame->odometry.theta);
+    const lama::Pose2D odom(scan->odometry.x, scan->odometry.y, scan->odometry.theta);
     if (!loc.enoughMotion(odom)) continue;
     const bool first = r.trajectory.empty();  // Loc2D's first update only stores the odometry
-    const lama::PointCloudXYZ::Ptr cloud = to_cloud(frame->scan);
+    const lama::PointCloudXYZ::Ptr cloud = to_cloud(scan->scan);
     const auto start = Clock::now();
-    loc.update(cloud, odom, frame->stamp);
+    loc.update(cloud, odom, scan->stamp);
     const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     if (!first) r.update_ms.push_back(ms);
-    const lama::Pose2D& pose = loc.getPose();
-    r.trajectory.push_back({frame->stamp, {pose.x(), pose.y(), pose.rotation()}});
+    r.trajectory.push_back({scan->stamp, frame.from_loc2d(loc.getPose())});
   }
   return r;
 }
