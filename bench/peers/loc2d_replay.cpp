@@ -210,15 +210,25 @@ double final_error(const Run& r, const std::vector<mote::logs::StampedPose>& sor
   return std::hypot(last.pose.x - ref->pose.x, last.pose.y - ref->pose.y);
 }
 
+// A JSON number, or null for NaN (no matched estimate) and infinities.
+std::string number(double v, int decimals) {
+  if (!std::isfinite(v)) return "null";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return text;
+}
+
 void print_json(const Run& r, const mote::replay::TrajectoryErrors& e, double final_m) {
   const mote::replay::Percentiles t = mote::replay::summarize(r.update_ms);
   std::printf(
       "{\"peer\": \"iris_lama Loc2D\", \"threads\": 1, \"scans\": %zu, \"updates\": %zu, "
-      "\"matched\": %zu, \"ate_rmse_m\": %.6f, \"heading_rmse_deg\": %.4f, \"max_error_m\": %.4f, "
-      "\"final_error_m\": %.4f, \"update_ms\": {\"mean\": %.4f, \"p50\": %.4f, \"p99\": %.4f, "
-      "\"max\": %.4f}}\n",
-      r.scans, r.trajectory.size(), e.matched, e.ate_rmse_m, e.heading_rmse_deg, e.max_error_m,
-      final_m, t.mean, t.p50, t.p99, t.max);
+      "\"matched\": %zu, \"ate_rmse_m\": %s, \"heading_rmse_deg\": %s, \"max_error_m\": %s, "
+      "\"final_error_m\": %s, \"update_ms\": {\"mean\": %s, \"p50\": %s, \"p99\": %s, "
+      "\"max\": %s}}\n",
+      r.scans, r.trajectory.size(), e.matched, number(e.ate_rmse_m, 6).c_str(),
+      number(e.heading_rmse_deg, 4).c_str(), number(e.max_error_m, 4).c_str(),
+      number(final_m, 4).c_str(), number(t.mean, 4).c_str(), number(t.p50, 4).c_str(),
+      number(t.p99, 4).c_str(), number(t.max, 4).c_str());
 }
 
 }  // namespace
