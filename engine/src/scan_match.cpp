@@ -25,7 +25,10 @@ Placed place(const Pose2& p, const Point2& e, double c, double s) {
 }  // namespace
 
 ScanMatcher::ScanMatcher(const SignedDistanceField& field, ScanMatchConfig config)
-    : field_(field), config_(config), inv_resolution_(1.0 / field.resolution()) {
+    : field_(field),
+      config_(config),
+      inv_resolution_(1.0 / field.resolution()),
+      surface_offset_(0.5 * field.resolution()) {
   if (!(config.scale > 0.0) || config.max_iterations < 0 || !(config.min_step > 0.0)) {
     throw ConfigError("ScanMatcher: scale and min_step must be > 0, max_iterations >= 0");
   }
@@ -52,8 +55,8 @@ ScanMatcher::Sample ScanMatcher::sample(double gx, double gy) const noexcept {
   const double d10 = at(i + 1, j);
   const double d01 = at(i, j + 1);
   const double d11 = at(i + 1, j + 1);
-  const double d =
-      (1 - ax) * (1 - ay) * d00 + ax * (1 - ay) * d10 + (1 - ax) * ay * d01 + ax * ay * d11;
+  const double d = surface_offset_ + (1 - ax) * (1 - ay) * d00 + ax * (1 - ay) * d10 +
+                   (1 - ax) * ay * d01 + ax * ay * d11;
   const double du = (1 - ay) * (d10 - d00) + ay * (d11 - d01);
   const double dv = (1 - ax) * (d01 - d00) + ax * (d11 - d10);
   if (!std::isfinite(d)) return {far, 0.0, 0.0};
