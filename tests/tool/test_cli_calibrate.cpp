@@ -25,6 +25,11 @@ TEST(CliCalibrate, SimulatedLogGivesALoadableConfigAndPicture) {
            "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" + out.string() + "'");
   ASSERT_EQ(cal.status, 0) << cal.err;
   EXPECT_NE(cal.out.find("beam          z_hit"), std::string::npos) << cal.out;
+  // One verdict line per fitted group.
+  EXPECT_NE(cal.out.find("\nsensor: fitted once against the reference poses"), std::string::npos)
+      << cal.out;
+  EXPECT_NE(cal.out.find("\nodometry: fitted once against the reference poses"), std::string::npos)
+      << cal.out;
   EXPECT_GT(fs::file_size(out / "calibration.png"), 1000U);
   // The config drives a replay.
   const Outcome rep =
