@@ -27,7 +27,10 @@ std::string log_label(double v) {
 }
 
 void x_ticks(RgbImage& image, const PlotArea& a, const Axis& x, int scale) {
-  const std::vector<double> values = x.log10 ? log_ticks(x.lo, x.hi) : ticks(x.lo, x.hi, 7);
+  // As many ticks as labels of five characters fit with a gap between them.
+  const int room = text_width("-0.00", scale) + 4 * kPad;
+  const int max_ticks = std::clamp(a.width / room, 2, 10);
+  const std::vector<double> values = x.log10 ? log_ticks(x.lo, x.hi) : ticks(x.lo, x.hi, max_ticks);
   const double step = values.size() > 1 ? values[1] - values[0] : 1.0;
   const int bottom = a.y + a.height - 1;
   for (const double v : values) {

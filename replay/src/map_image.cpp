@@ -145,7 +145,8 @@ std::pair<figure::Axis, figure::Axis> metre_axes(const OccupancyGrid& map, const
 MapFigure render_map(const OccupancyGrid& map, const MapOverlay& overlay,
                      const MapRenderOptions& options) {
   const View v = choose_view(map, overlay, options);
-  const int text_scale = (v.i1 - v.i0 + 1) * v.scale >= 400 ? 2 : 1;
+  const int extent = std::max(v.i1 - v.i0 + 1, v.j1 - v.j0 + 1) * v.scale;
+  const int text_scale = extent >= 400 ? 2 : 1;  // 10 x 14 px glyphs beside a map of that size
   const figure::PlotArea area{figure::left_margin(text_scale), kPad, (v.i1 - v.i0 + 1) * v.scale,
                               (v.j1 - v.j0 + 1) * v.scale};
   const LegendSpec legend = legend_for(overlay, map.resolution() / v.scale, v.scale, text_scale);
