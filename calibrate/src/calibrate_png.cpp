@@ -22,7 +22,7 @@ namespace {
 using figure::Rgb;
 
 constexpr int kPanel = 300;  // px, each plot square
-constexpr int kGap = 24;     // px, right of each panel
+constexpr int kGap = 60;     // px, right of each panel: room for the key
 constexpr int kText = 2;     // px per font dot
 constexpr int kPad = 8;      // px
 constexpr Rgb kBars{150, 150, 150};
@@ -180,7 +180,7 @@ double quantile(std::vector<double> v, double q) {
 
 Panel panel_at(RgbImage& image, int index) {
   const int column = figure::left_margin(kText) + kPanel + kGap;
-  return {image, {index * column + figure::left_margin(kText), kHeader, kPanel, kPanel}};
+  return {image, {kPad + index * column + figure::left_margin(kText), kHeader, kPanel, kPanel}};
 }
 
 void motion_panels(RgbImage& image, const CalibrationResult& r) {
@@ -194,8 +194,7 @@ void motion_panels(RgbImage& image, const CalibrationResult& r) {
   // x axes to the 99th percentile, so a few long increments do not squeeze the rest.
   const double t_max = std::max(0.05, quantile(trans, 0.99));
   const double r_max = std::max(0.05, quantile(rot, 0.99));
-  const std::vector<KeyItem> key{{kPoints, false, "increments"},
-                                 {kBounds, true, "fit: 1, 2 sigma"}};
+  const std::vector<KeyItem> key{{kPoints, false, "increments"}, {kBounds, true, "1, 2 sigma fit"}};
   const int zero = kPanel - 1 - pixel(0.0, -0.3, 0.3);
   // Heading: var = alpha1 (rot1^2 + rot2^2) + 2 alpha2 trans^2; drawn with rot1 = 0, rot2 = rot.
   const Panel heading = panel_at(image, 1);
@@ -218,7 +217,7 @@ void motion_panels(RgbImage& image, const CalibrationResult& r) {
 
 void write_calibration_png(const CalibrationResult& r, const std::filesystem::path& png) {
   RgbImage image;
-  image.width = 3 * (figure::left_margin(kText) + kPanel + kGap);
+  image.width = kPad + 3 * (figure::left_margin(kText) + kPanel + kGap);
   image.height = kHeader + kPanel + figure::bottom_margin(kText) + kPad;
   image.rgb.assign(static_cast<std::size_t>(image.width * image.height * 3), 255);
   range_panel(panel_at(image, 0), r);
