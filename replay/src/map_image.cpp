@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <string>
+#include <utility>
 
 #include "map_legend.hpp"
 #include "map_style.hpp"
