@@ -2,7 +2,7 @@
 // with #t=N in the URL; sizes the map and the timelines to the window so that both are in view
 // without scrolling. The title says "mote viewer: update N of M" once drawn, "mote viewer:
 // error: ..." on failure, and the body's data-timelines-bottom the timelines' lowest pixel row
-// (what tests/replay/test_viewer.py reads).
+// and data-viewport-height the window's (what tests/replay/test_viewer.py reads).
 #include "viewer_template.hpp"
 
 namespace mote::replay {
@@ -175,6 +175,7 @@ const std::string_view kViewerScript = R"js("use strict";
       document.title = "mote viewer: update " + current + " of " + n;
       const bottom = document.getElementById("timelines").getBoundingClientRect().bottom;
       document.body.dataset.timelinesBottom = String(Math.ceil(bottom + window.scrollY));
+      document.body.dataset.viewportHeight = String(window.innerHeight);
     }
 
     let timer = null;
