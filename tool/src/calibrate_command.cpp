@@ -167,10 +167,15 @@ void print_verdicts(const calibrate::CalibrationResult& r, const calibrate::Cali
             name, v.rounds, pct);
         break;
       case Status::kNotConverged:
-        std::printf(
-            "%s: NOT converged: round limit, last change %.1f %% in %s (rerun with "
-            "--rounds %zu)\n",
-            name, pct, of[0] != '\0' ? of : "-", v.rounds + 3);
+        if (v.rounds < 2) {
+          std::printf("%s: NOT converged: one round, no change to judge (rerun with --rounds 3)\n",
+                      name);
+        } else {
+          std::printf(
+              "%s: NOT converged: round limit, last change %.1f %% in %s (rerun with "
+              "--rounds %zu)\n",
+              name, pct, of, v.rounds + 3);
+        }
         break;
     }
     for (const std::string& b : v.at_bound)
