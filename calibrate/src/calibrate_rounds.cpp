@@ -32,36 +32,47 @@ double noise_change(const OdometryAlphas& a, const OdometryAlphas& b,
   return increments.empty() ? 0.0 : sum / static_cast<double>(increments.size());
 }
 
-void note_change(double change, const char* name, CalibrationRound& r) {
+enum class Group { kSensor, kMotion };
+
+void note_change(double change, const char* name, CalibrationRound& r, Group group) {
   if (change > r.largest_change) {
     r.largest_change = change;
     r.largest_change_of = name;
+  }
+  double& of_group = group == Group::kSensor ? r.sensor_change : r.motion_change;
+  std::string& name_of_group = group == Group::kSensor ? r.sensor_change_of : r.motion_change_of;
+  if (change > of_group) {
+    of_group = change;
+    name_of_group = name;
   }
 }
 
 // Relative change of a scale parameter, absolute change of a weight. Ackermann's alphas below
 // 1e-3 count as 1e-3: a term that small is no noise worth the name, and one near its lower
 // bound (1e-5) would otherwise "change" by a factor of five between rounds.
-void compare(double a, double b, bool weight, const char* name, CalibrationRound& r) {
-  note_change(weight ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(b), 1e-3), name, r);
+void compare(double a, double b, bool weight, const char* name, CalibrationRound& r, Group group) {
+  note_change(weight ? std::abs(a - b) : std::abs(a - b) / std::max(std::abs(b), 1e-3), name, r,
+              group);
 }
 
 }  // namespace
 
 void measure_change(CalibrationRound& r, const CalibrationRound& prev,
                     const std::vector<MotionResidual>& increments) {
-  compare(r.field.params.sigma_hit, prev.field.params.sigma_hit, false, "sigma_hit", r);
-  compare(r.field.params.z_hit, prev.field.params.z_hit, true, "z_hit", r);
-  compare(r.beam.params.sigma_hit, prev.beam.params.sigma_hit, false, "beam sigma_hit", r);
-  compare(r.beam.params.z_hit, prev.beam.params.z_hit, true, "beam z_hit", r);
-  compare(r.correlation.tempering, prev.correlation.tempering, false, "tracking_tempering", r);
+  const Group sensor = Group::kSensor, motion = Group::kMotion;
+  compare(r.field.params.sigma_hit, prev.field.params.sigma_hit, false, "sigma_hit", r, sensor);
+  compare(r.field.params.z_hit, prev.field.params.z_hit, true, "z_hit", r, sensor);
+  compare(r.beam.params.sigma_hit, prev.beam.params.sigma_hit, false, "beam sigma_hit", r, sensor);
+  compare(r.beam.params.z_hit, prev.beam.params.z_hit, true, "beam z_hit", r, sensor);
+  compare(r.correlation.tempering, prev.correlation.tempering, false, "tracking_tempering", r,
+          sensor);
   note_change(noise_change(r.odometry.alphas_zero_mean, prev.odometry.alphas_zero_mean, increments),
-              "odometry noise (alpha1-alpha4)", r);
+              "odometry noise (alpha1-alpha4)", r, motion);
   if (r.ackermann && prev.ackermann) {
     compare(r.ackermann->alpha_steering, prev.ackermann->alpha_steering, false, "Ackermann alpha1",
-            r);
+            r, motion);
     compare(r.ackermann->alpha_distance, prev.ackermann->alpha_distance, false, "Ackermann alpha3",
-            r);
+            r, motion);
   }
 }
 

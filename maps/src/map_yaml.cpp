@@ -1,8 +1,11 @@
 // Reading the map_server YAML file (ros-planning/navigation map_server/src/main.cpp keys).
 #include <yaml-cpp/yaml.h>
 
+#include <cctype>
 #include <cmath>
+#include <fstream>
 #include <string>
+#include <string_view>
 
 #include "mote/core/error.hpp"
 #include "mote/maps/map_loader.hpp"
@@ -90,8 +93,41 @@ void check_ranges(const YamlSource& src, const YAML::Node& root, const MapMetada
   }
 }
 
+// The image format whose signature the file starts with ("PNG", "PGM"...), or "" for none.
+std::string_view image_kind(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char head[8] = {};
+  in.read(head, sizeof head);
+  const std::string_view h(head, static_cast<std::size_t>(in.gcount()));
+  if (h.starts_with("\x89PNG\r\n\x1a\n")) return "PNG";
+  if (h.starts_with("\xff\xd8\xff")) return "JPEG";
+  if (h.starts_with("BM")) return "BMP";
+  if (h.size() >= 3 && h[0] == 'P' && h[1] >= '1' && h[1] <= '6' &&
+      std::isspace(static_cast<unsigned char>(h[2])) != 0) {
+    return h[1] == '3' || h[1] == '6' ? "PPM" : h[1] == '2' || h[1] == '5' ? "PGM" : "PBM";
+  }
+  return "";
+}
+
+// An image given where the map_server YAML file that names it belongs: says so, and names the
+// YAML file beside it with the same stem when there is one.
+void refuse_image(const YamlSource& src, const std::filesystem::path& file) {
+  const std::string_view kind = image_kind(file);
+  if (kind.empty()) return;
+  std::filesystem::path beside = file;
+  beside.replace_extension(".yaml");
+  const std::string hint = std::filesystem::is_regular_file(beside)
+                               ? "; did you mean " + beside.string() + "?"
+                               : "; give the .yaml file whose 'image:' key names it";
+  src.fail("byte 0", "this is a " + std::string(kind) +
+                         " image, not a map: a map is a map_server YAML file (image, resolution, "
+                         "origin, thresholds)" +
+                         hint);
+}
+
 YAML::Node parse(const YamlSource& src, const std::filesystem::path& yaml) {
   if (!std::filesystem::is_regular_file(yaml)) src.fail("", "cannot open map YAML file");
+  refuse_image(src, yaml);
   try {
     YAML::Node root = YAML::LoadFile(yaml.string());
     if (!root.IsMap()) src.fail("line 1", "expected a YAML mapping of map_server keys");

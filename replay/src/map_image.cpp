@@ -1,20 +1,22 @@
-// map.png: grid cells to pixels, polylines and particle dots (written by maps' write_png).
+// map.png: grid cells to pixels, the trajectories, particles and markers, axes in metres, and
+// the legend below (map_legend.cpp). Written by maps' write_png.
 #include "mote/replay/map_image.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <string>
+#include <utility>
+
+#include "map_legend.hpp"
+#include "map_style.hpp"
 
 namespace mote::replay {
 namespace {
 
-using Color = std::array<std::uint8_t, 3>;
-constexpr Color kFree{255, 255, 255};
-constexpr Color kOccupied{0, 0, 0};
-constexpr Color kUnknown{160, 160, 160};
-constexpr Color kReference{0, 170, 0};
-constexpr Color kEstimate{220, 20, 20};
-constexpr Color kParticle{40, 90, 255};
+namespace style = map_style;
+using figure::Rgb;
+
+constexpr int kPad = 12;  // px, white border above and right of the map
 
 // The cropped cell range [i0, i1] x [j0, j1] and the integer scale of each cell in pixels.
 struct View {
@@ -63,85 +65,113 @@ View choose_view(const OccupancyGrid& map, const MapOverlay& overlay, const MapR
   return v;
 }
 
-void fill(RgbImage& img, int x, int y, Color c) {
-  if (x < 0 || y < 0 || x >= img.width || y >= img.height) return;
-  std::copy(c.begin(), c.end(), img.at(x, y));
-}
+// Draws a map frame pose as pixels of the map area.
+struct Projection {
+  const OccupancyGrid& map;
+  View v;
+  figure::PlotArea area;
+  [[nodiscard]] Point2 operator()(const Pose2& p) const {
+    const Point2 c = to_cells(map, p);
+    return {area.x + (c.x - v.i0) * v.scale, area.y + (v.j1 + 1 - c.y) * v.scale};
+  }
+};
 
-void draw_cells(RgbImage& img, const OccupancyGrid& map, const View& v) {
+void draw_cells(RgbImage& img, const Projection& at) {
+  const View& v = at.v;
   for (int j = v.j0; j <= v.j1; ++j) {
     for (int i = v.i0; i <= v.i1; ++i) {
-      const CellState s = map.at({i, j});
-      const Color c = s == CellState::kFree       ? kFree
-                      : s == CellState::kOccupied ? kOccupied
-                                                  : kUnknown;
-      const int px = (i - v.i0) * v.scale;
-      const int py = (v.j1 - j) * v.scale;  // image row 0 is the top (largest j)
-      for (int dy = 0; dy < v.scale; ++dy) {
-        for (int dx = 0; dx < v.scale; ++dx) fill(img, px + dx, py + dy, c);
-      }
+      const CellState s = at.map.at({i, j});
+      const Rgb c = s == CellState::kFree       ? style::kFree
+                    : s == CellState::kOccupied ? style::kOccupied
+                                                : style::kUnknown;
+      // image row 0 is the top (largest j)
+      figure::fill_rect(img, at.area.x + (i - v.i0) * v.scale, at.area.y + (v.j1 - j) * v.scale,
+                        v.scale, v.scale, c);
     }
   }
 }
 
-// Pixel coordinates (fractional) of a map frame pose.
-Point2 to_pixel(const OccupancyGrid& map, const View& v, const Pose2& p) {
-  const Point2 c = to_cells(map, p);
-  return {(c.x - v.i0) * v.scale, (v.j1 + 1 - c.y) * v.scale};
-}
-
-void dot(RgbImage& img, Point2 p, int size, Color c) {
-  const int x0 = static_cast<int>(std::floor(p.x)) - size / 2;
-  const int y0 = static_cast<int>(std::floor(p.y)) - size / 2;
-  for (int dy = 0; dy < size; ++dy) {
-    for (int dx = 0; dx < size; ++dx) fill(img, x0 + dx, y0 + dy, c);
-  }
-}
-
-// A segment as dots every half pixel; far-off segments (estimate jumps) are clipped by fill().
-void segment(RgbImage& img, Point2 a, Point2 b, int width, Color c) {
-  const double length = std::hypot(b.x - a.x, b.y - a.y);
-  const int steps = static_cast<int>(std::min(4.0 * (img.width + img.height), 2.0 * length)) + 1;
-  for (int k = 0; k <= steps; ++k) {
-    const double t = static_cast<double>(k) / steps;
-    dot(img, {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}, width, c);
-  }
-}
-
-void polyline(RgbImage& img, const OccupancyGrid& map, const View& v,
-              std::span<const logs::StampedPose> path, Color c) {
-  const int width = std::max(2, v.scale / 2);
+// The path's segments from pose k-1 to pose k for which keep(k) holds.
+template <class Keep>
+void polyline(RgbImage& img, const Projection& at, std::span<const logs::StampedPose> path,
+              double width, Rgb c, Keep keep) {
   for (std::size_t k = 1; k < path.size(); ++k) {
-    const Point2 a = to_pixel(map, v, path[k - 1].pose);
-    const Point2 b = to_pixel(map, v, path[k].pose);
-    if (std::isfinite(a.x + a.y + b.x + b.y)) segment(img, a, b, width, c);
+    const Point2 a = at(path[k - 1].pose);
+    const Point2 b = at(path[k].pose);
+    if (keep(k) && std::isfinite(a.x + a.y + b.x + b.y)) {
+      figure::segment(img, a.x, a.y, b.x, b.y, width, c);
+    }
   }
+}
+
+void draw_paths(RgbImage& img, const Projection& at, const MapOverlay& o, const style::Strokes& s) {
+  const auto all = [](std::size_t) { return true; };
+  polyline(img, at, o.reference, s.reference, style::kReference, all);
+  polyline(img, at, o.estimate, s.estimate, style::kEstimate, all);
+  if (o.states.size() == o.estimate.size()) {
+    polyline(img, at, o.estimate, s.lost, style::kLost,
+             [&](std::size_t k) { return o.states[k] == LocalizationState::kLost; });
+  }
+}
+
+void draw_markers(RgbImage& img, const Projection& at, const MapOverlay& o,
+                  const style::Strokes& s) {
+  if (!o.estimate.empty()) {
+    const Point2 start = at(o.estimate.front().pose);
+    const Point2 end = at(o.estimate.back().pose);
+    if (std::isfinite(start.x + start.y)) draw_start_marker(img, start.x, start.y, s.marker);
+    if (std::isfinite(end.x + end.y)) draw_end_marker(img, end.x, end.y, s.marker);
+  }
+  // The particles last: the end marker sits where they are.
+  for (const Pose2& p : o.particles) {
+    const Point2 px = at(p);
+    if (std::isfinite(px.x + px.y)) figure::disc(img, px.x, px.y, s.particle, style::kParticle);
+  }
+}
+
+// The axes' values: metres in the map frame, or from the grid's corner when the grid is
+// rotated in the map frame (its rows are then not along the map's x axis).
+std::pair<figure::Axis, figure::Axis> metre_axes(const OccupancyGrid& map, const View& v) {
+  const double r = map.resolution();
+  const bool aligned = map.origin().theta == 0.0;
+  const double x0 = aligned ? map.origin().x : 0.0;
+  const double y0 = aligned ? map.origin().y : 0.0;
+  const std::string prefix = aligned ? "" : "grid ";
+  return {figure::Axis{x0 + v.i0 * r, x0 + (v.i1 + 1) * r, prefix + "x (m)"},
+          figure::Axis{y0 + v.j0 * r, y0 + (v.j1 + 1) * r, prefix + "y (m)"}};
 }
 
 }  // namespace
 
-RgbImage render_map(const OccupancyGrid& map, const MapOverlay& overlay,
-                    const MapRenderOptions& options) {
+MapFigure render_map(const OccupancyGrid& map, const MapOverlay& overlay,
+                     const MapRenderOptions& options) {
   const View v = choose_view(map, overlay, options);
-  RgbImage img;
-  img.width = (v.i1 - v.i0 + 1) * v.scale;
-  img.height = (v.j1 - v.j0 + 1) * v.scale;
+  const int extent = std::max(v.i1 - v.i0 + 1, v.j1 - v.j0 + 1) * v.scale;
+  const int text_scale = extent >= 400 ? 2 : 1;  // 10 x 14 px glyphs beside a map of that size
+  const figure::PlotArea area{figure::left_margin(text_scale), kPad, (v.i1 - v.i0 + 1) * v.scale,
+                              (v.j1 - v.j0 + 1) * v.scale};
+  const LegendSpec legend = legend_for(overlay, map.resolution() / v.scale, v.scale, text_scale);
+  MapFigure out{{}, area, v.scale};
+  RgbImage& img = out.image;
+  img.width = std::max(area.x + area.width + kPad, legend_min_width(legend));
+  const int legend_top = area.y + area.height + figure::bottom_margin(text_scale) + kPad;
+  img.height = legend_top + legend_height(legend, img.width);
   img.rgb.assign(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height) * 3U,
-                 0);
-  draw_cells(img, map, v);
-  const int dot_size = std::max(1, v.scale / 2);
-  for (const Pose2& p : overlay.particles) {
-    const Point2 px = to_pixel(map, v, p);
-    if (std::isfinite(px.x + px.y)) dot(img, px, dot_size, kParticle);
-  }
-  polyline(img, map, v, overlay.reference, kReference);
-  polyline(img, map, v, overlay.estimate, kEstimate);
-  return img;
+                 255);
+  const Projection at{map, v, area};
+  draw_cells(img, at);
+  const style::Strokes strokes(v.scale);
+  draw_paths(img, at, overlay, strokes);
+  draw_markers(img, at, overlay, strokes);
+  const auto [x_axis, y_axis] = metre_axes(map, v);
+  figure::draw_axes(img, area, x_axis, y_axis, text_scale);
+  draw_legend(img, legend, legend_top);
+  return out;
 }
 
 void write_map_png(const std::filesystem::path& path, const OccupancyGrid& map,
                    const MapOverlay& overlay, const MapRenderOptions& options) {
-  write_png(path, render_map(map, overlay, options));
+  write_png(path, render_map(map, overlay, options).image);
 }
 
 }  // namespace mote::replay

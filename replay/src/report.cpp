@@ -16,7 +16,6 @@
 
 #include "mote/core/error.hpp"
 #include "mote/engine/isa.hpp"
-#include "mote/replay/map_image.hpp"
 #include "mote/replay/profile.hpp"
 #include "mote/replay/report_json.hpp"
 #include "mote/replay/verdict.hpp"
@@ -373,25 +372,6 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
       k.recovered_after ? "recovered after " + std::to_string(*k.recovered_after) + " updates (" +
                               str(k.within_m, 2) + " m, held " + std::to_string(k.hold) + ")"
                         : "not recovered");
-}
-
-void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,
-                          const ReportOptions& options) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw Error(dir.string() + ": cannot create output folder: " + ec.message());
-  std::ofstream json(dir / "report.json");
-  write_report_json(json, result, options);
-  if (!json.good()) throw Error((dir / "report.json").string() + ": cannot write");
-  if (options.profile) {
-    std::ofstream folded(dir / "profile.folded");
-    write_folded_stacks(folded, profile_run(result));
-    if (!folded.good()) throw Error((dir / "profile.folded").string() + ": cannot write");
-  }
-  logs::write_tum(dir / "trajectory.tum", result.trajectory);
-  write_updates_csv(dir / "updates.csv", result);
-  MapOverlay overlay{result.reference, result.trajectory, result.final_particles};
-  write_map_png(dir / "map.png", result.map, overlay);
 }
 
 }  // namespace mote::replay

@@ -221,6 +221,8 @@ void write_statistics(std::ostream& out, const ReplayResult& result) {
   write_array(out, "total_ms", n, [&](std::size_t k) { return u[k].ms.total; });
   write_array(out, "particles", n,
               [&](std::size_t k) { return static_cast<double>(u[k].particles); });
+  write_array(out, "weighed", n, [&](std::size_t k) { return static_cast<double>(u[k].weighed); });
+  write_array(out, "resampled", n, [&](std::size_t k) { return u[k].resampled ? 1.0 : 0.0; });
   write_array(out, "ess", n, [&](std::size_t k) { return u[k].effective_sample_size; });
   write_array(out, "injected", n,
               [&](std::size_t k) { return static_cast<double>(u[k].injected); });

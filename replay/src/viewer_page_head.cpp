@@ -10,14 +10,19 @@ const std::string_view kViewerPageHead = R"html(<!doctype html>
 <title>mote viewer: loading</title>
 <style>
 body { font: 13px system-ui, sans-serif; margin: 8px; background: #f4f4f4; color: #222; }
-header { display: flex; gap: 10px; align-items: center; margin-bottom: 6px; }
+header { display: flex; gap: 10px; align-items: center; margin-bottom: 4px; }
 #slider { flex: 1; max-width: 700px; }
-#info { font-variant-numeric: tabular-nums; white-space: pre-wrap; }
+#info, #counts { font-variant-numeric: tabular-nums; white-space: pre-wrap; }
+#layout { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; margin-top: 4px; }
+#counts { margin-bottom: 4px; font-size: 12px; line-height: 17px; }
+.key { font-size: 12px; line-height: 16px; margin-top: 4px; white-space: nowrap; overflow: hidden; }
+.key i { display: inline-block; width: 10px; height: 10px; margin: 0 3px 0 8px; }
+.key i:first-child { margin-left: 0; }
 #error { background: #b00; color: #fff; padding: 6px; margin-bottom: 6px; }
 #legend span { margin-right: 14px; }
 #legend i { display: inline-block; width: 10px; height: 10px; margin-right: 4px; }
 canvas { display: block; background: #fff; }
-#timelines canvas { margin-top: 2px; cursor: pointer; }
+#timelines canvas { cursor: pointer; }
 </style>
 </head>
 <body>
@@ -30,13 +35,18 @@ canvas { display: block; background: #fff; }
 <div id="legend">
 <span><i style="background:#ff00ff"></i>estimate</span>
 <span><i style="background:#dc1414"></i>estimated trajectory</span>
-<span><i style="background:#00aa00"></i>reference</span>
+<span><i style="background:#6ed26e"></i>reference</span>
 <span><i style="background:#285aff"></i>particles (shade: weight)</span>
 <span><i style="background:#ff8c00"></i>scan endpoints from the estimate</span>
 <span><i style="border:2px solid #7b2cbf;border-radius:50%;width:6px;height:6px"></i>other clusters (area: weight)</span>
 </div>
+<div id="layout">
 <canvas id="map"></canvas>
+<div id="side">
+<div id="counts"></div>
 <div id="timelines"></div>
+</div>
+</div>
 )html";
 
 }  // namespace mote::replay

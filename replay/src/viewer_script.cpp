@@ -1,6 +1,8 @@
-// viewer.html's script: plain JavaScript, no libraries. Opens at update N with #t=N in the URL;
-// the title says "mote viewer: update N of M" once drawn, "mote viewer: error: ..." on failure
-// (what tests/replay/test_viewer.py reads).
+// viewer.html's script: plain JavaScript, no libraries. Opens at the last update, or at update N
+// with #t=N in the URL; sizes the map and the timelines to the window so that both are in view
+// without scrolling. The title says "mote viewer: update N of M" once drawn, "mote viewer:
+// error: ..." on failure, and the body's data-timelines-bottom the timelines' lowest pixel row
+// and data-viewport-height the window's (what tests/replay/test_viewer.py reads).
 #include "viewer_template.hpp"
 
 namespace mote::replay {
@@ -27,23 +29,27 @@ const std::string_view kViewerScript = R"js("use strict";
     return out;
   }
 
-  const PHASES = [["motion_ms", "#4e79a7"], ["sensor_ms", "#f28e2b"], ["normalize_ms", "#59a14f"],
-                  ["resample_ms", "#b07aa1"], ["estimate_ms", "#9c755f"]];
+  // [data key, colour, name in the chart's key]
+  const PHASES = [["motion_ms", "#4e79a7", "motion"], ["sensor_ms", "#f28e2b", "sensor"],
+                  ["normalize_ms", "#59a14f", "normalize"], ["resample_ms", "#b07aa1", "resample"],
+                  ["estimate_ms", "#9c755f", "estimate"]];
   const TIMELINES = [
-    { label: "update ms per phase (motion, sensor, normalize, resample, estimate)", stack: PHASES },
-    { label: "particles", key: "particles", color: "#285aff" },
-    { label: "effective sample size", key: "ess", color: "#e15759" },
-    { label: "injected particles", key: "injected", color: "#76b7b2" },
-    { label: "tempering exponent", key: "tempering", color: "#edc948" },
-    { label: "position error vs reference, m", key: "error_m", color: "#dc1414" },
+    { label: "ms per update", stack: PHASES },
+    { series: [["particles", "#285aff", "particles after the update"]] },
+    { series: [["ess", "#e15759", "effective sample size before resampling"]] },
+    { series: [["injected", "#76b7b2", "injected particles"]] },
+    { series: [["tempering", "#edc948", "tempering exponent"]] },
+    { series: [["error_m", "#dc1414", "position error vs reference, m"]] },
   ];
+  const LABEL_PX = 20;  // height of a timeline's key line, px
 
   function main() {
     const d = JSON.parse(document.getElementById("mote-data").textContent);
     const n = d.total_ms.length;
     if (n === 0) throw new Error("the run has no updates");
     const box = viewBox(d);  // cells shown: the known part of the map and the trajectories
-    const scale = Math.min(8, 860 / Math.max(box.u1 - box.u0, box.v1 - box.v0));
+    const fit = fitLayout(box);
+    const scale = fit.scale;
     const particleEnd = decode(d.particle_end, 4, Uint32Array);
     const particles = decode(d.particle_uvw, 2, Uint16Array);
     const endpointEnd = decode(d.endpoint_end, 4, Uint32Array);
@@ -63,8 +69,9 @@ const std::string_view kViewerScript = R"js("use strict";
     const cy = (v) => (box.v1 - v) * scale;
     const fx = (u) => cx(u / d.per_cell);  // fixed point -> canvas pixels
     const fy = (v) => cy(v / d.per_cell);
-    const width = Math.max(canvas.width, 800);
-    const timelines = TIMELINES.map((t) => makeTimeline(t, d, n, width, (k) => show(k)));
+    document.getElementById("side").style.width = fit.timelineWidth + "px";
+    const timelines = TIMELINES.map((t) =>
+      makeTimeline(t, d, n, fit.timelineWidth, fit.timelineHeight, (k) => show(k)));
     const slider = document.getElementById("slider");
     slider.max = String(n - 1);
     let current = 0;
@@ -151,21 +158,24 @@ const std::string_view kViewerScript = R"js("use strict";
       // mapImage holds the embedded cells, from (u0, v0) of the map; its row 0 is their top.
       ctx.drawImage(mapImage, box.u0 - d.map.u0, d.map.v0 + d.map.height - box.v1,
                     box.u1 - box.u0, box.v1 - box.v0, 0, 0, canvas.width, canvas.height);
-      polyline(d.reference, referenceCount(d.estimate_t[current]), "#00aa00", 2);
+      // The reference wide and light under the estimate, which does not hide it.
+      polyline(d.reference, referenceCount(d.estimate_t[current]), "#6ed26e", 4);
       drawParticles(current);
       drawEndpoints(current);
       polyline(d.estimate, current + 1, "#dc1414", 1.5);
       drawOtherClusters(current);
       drawEstimate(current);
       timelines.forEach((t) => t.cursor(current));
-      const shown = (particleEnd[current] - (current > 0 ? particleEnd[current - 1] : 0)) / 3;
       const err = d.error_m[current];
       document.getElementById("info").textContent =
           "update " + current + " of " + n + "   t = " + d.estimate_t[current].toFixed(2) +
-          " s   " + d.particles[current] + " particles (" + shown + " drawn)   ESS " +
-          d.ess[current].toFixed(1) + "   clusters " + d.clusters[current] + " (weights " + clusterWeights(current) + ")   error " +
-          (err === null ? "-" : err.toFixed(3) + " m");
+          " s   clusters " + d.clusters[current] + " (weights " + clusterWeights(current) +
+          ")   error " + (err === null ? "-" : err.toFixed(3) + " m");
+      document.getElementById("counts").textContent = countsText(d, current, particleEnd);
       document.title = "mote viewer: update " + current + " of " + n;
+      const bottom = document.getElementById("timelines").getBoundingClientRect().bottom;
+      document.body.dataset.timelinesBottom = String(Math.ceil(bottom + window.scrollY));
+      document.body.dataset.viewportHeight = String(window.innerHeight);
     }
 
     let timer = null;
@@ -182,9 +192,39 @@ const std::string_view kViewerScript = R"js("use strict";
       if (e.key === "ArrowRight") show(current + 1);
       if (e.key === "ArrowLeft") show(current - 1);
     });
-    const fromHash = () => { const m = /t=(\d+)/.exec(location.hash); return m ? Number(m[1]) : 0; };
+    const fromHash = () => { const m = /t=(\d+)/.exec(location.hash); return m ? Number(m[1]) : n - 1; };
     window.addEventListener("hashchange", () => show(fromHash()));
     show(fromHash());
+  }
+
+  // The particle count and the effective sample size, each said in full: the ESS is of the
+  // weights the scan gave the particles it weighed, before resampling drew the particles the
+  // filter holds after the update, so it can exceed that count.
+  function countsText(d, k, particleEnd) {
+    const shown = (particleEnd[k] - (k > 0 ? particleEnd[k - 1] : 0)) / 3;
+    const resampled = d.resampled[k] ? "then resampled to " + d.particles[k] :
+                                       "not resampled (ESS above the threshold)";
+    return "particles " + d.particles[k] + " after the update (" + shown + " drawn on the map)\n" +
+           "weighed " + d.weighed[k] + " by the scan, " + resampled + "\n" +
+           "effective sample size " + d.ess[k].toFixed(1) + ": (\u03a3w)\u00b2 / \u03a3w\u00b2 of the " +
+           "weighed\nparticles' weights, before resampling";
+  }
+
+  // The map's scale (canvas px per cell) and the timelines' size: the map beside the timelines
+  // when the window is wide enough, both within the window's height.
+  function fitLayout(box) {
+    const W = window.innerWidth || 1400, H = window.innerHeight || 900;
+    const top = document.getElementById("layout").getBoundingClientRect().top + window.scrollY;
+    const free = Math.max(320, H - top - 12);
+    const side = W >= 1000 ? Math.min(640, Math.max(400, 0.4 * W)) : 0;
+    const across = Math.max(300, W - side - 40);
+    const scale = Math.min(8, across / (box.u1 - box.u0), free / (box.v1 - box.v0));
+    if (side === 0) return { scale, timelineWidth: Math.max(300, W - 24), timelineHeight: 64 };
+    const mapWidth = Math.round((box.u1 - box.u0) * scale);
+    const counts = 4 * 17 + 8;  // the four lines of #counts
+    const each = Math.floor((free - counts) / TIMELINES.length) - LABEL_PX;
+    return { scale, timelineWidth: Math.max(360, W - mapWidth - 44),
+             timelineHeight: Math.max(30, Math.min(90, each)) };
   }
 
   // The cells to show: the known (free or occupied) part of the embedded map, without the 0.5%
@@ -241,9 +281,28 @@ const std::string_view kViewerScript = R"js("use strict";
     g.putImageData(img, 0, 0);
   }
 
+  const format = (v) => (Number.isInteger(v) ? String(v) : Number(v).toPrecision(4));
+
+  // A timeline's key line: a swatch and a name per series, then the value at the cursor.
+  function makeKey(spec, series) {
+    const key = document.createElement("div");
+    key.className = "key";
+    for (const [, color, name] of series) {
+      const swatch = document.createElement("i");
+      swatch.style.background = color;
+      key.append(swatch, name + " ");
+    }
+    if (spec.label) key.prepend(spec.label + ": ");
+    const now = document.createElement("span");
+    key.append(now);
+    document.getElementById("timelines").appendChild(key);
+    return now;
+  }
+
   // One timeline: the series drawn once into a backing canvas, the cursor on top per update.
-  function makeTimeline(spec, d, n, width, onPick) {
-    const height = 64;
+  function makeTimeline(spec, d, n, width, height, onPick) {
+    const series = spec.stack ? spec.stack : spec.series;
+    const now = makeKey(spec, series);
     const canvas = document.createElement("canvas");
     canvas.width = width;
     canvas.height = height;
@@ -254,7 +313,6 @@ const std::string_view kViewerScript = R"js("use strict";
     const g = back.getContext("2d");
     g.fillStyle = "#fff";
     g.fillRect(0, 0, width, height);
-    const series = spec.stack ? spec.stack : [[spec.key, spec.color]];
     const value = (k) => series.reduce((s, [key]) => s + (d[key][k] || 0), 0);
     // The axis ends at the 99th percentile so that a few slow updates leave the rest readable;
     // taller bars are clipped.
@@ -265,7 +323,7 @@ const std::string_view kViewerScript = R"js("use strict";
     for (let k = 0; k < n; ++k) {
       let base = height;
       for (const [key, color] of series) {
-        const h = Math.min(((d[key][k] || 0) / top) * (height - 14), base - 14);
+        const h = Math.min(((d[key][k] || 0) / top) * (height - 2), base - 2);
         g.fillStyle = color;
         g.fillRect((k * width) / n, base - h, barWidth, h);
         base -= h;
@@ -276,15 +334,15 @@ const std::string_view kViewerScript = R"js("use strict";
       const r = canvas.getBoundingClientRect();
       onPick(((e.clientX - r.left) / r.width) * n);
     });
+    const hasData = series.some(([key]) => d[key].some((v) => v !== null));
     return {
       cursor(k) {
         ctx.drawImage(back, 0, 0);
         ctx.fillStyle = "#000";
         ctx.fillRect(((k + 0.5) * width) / n - 1, 0, 2, height);
-        const now = spec.stack ? value(k) : d[spec.key][k];
-        ctx.font = "11px sans-serif";
-        ctx.fillText(spec.label + ": " + (now === null ? "-" : Number(now).toPrecision(4)) +
-                     "   (axis to " + top.toPrecision(4) + ", the 99th percentile)", 4, 11);
+        const v = series.length > 1 ? value(k) : d[series[0][0]][k];
+        now.textContent = !hasData ? "(none in this run)" :
+          "= " + (v === null ? "-" : format(v)) + " (axis to " + format(top) + ", p99)";
       },
     };
   }

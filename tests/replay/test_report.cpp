@@ -182,23 +182,81 @@ TEST(Report, WithoutReferenceHasNoAccuracyKeys) {
   EXPECT_FALSE(check.keys.contains("ate_rmse_m"));
 }
 
-TEST(MapImage, CellsAreColouredAndTheEstimateIsDrawn) {
-  const OccupancyGrid map = small_map();
+MapRenderOptions scale_ten() {
   MapRenderOptions options;
   options.target_pixels = 40;  // scale 10 for a 4-cell extent
   options.max_scale = 10;
-  const RgbImage plain = render_map(map, {}, options);
-  ASSERT_EQ(plain.width, 40);
-  ASSERT_EQ(plain.height, 30);
-  RgbImage img = plain;
-  EXPECT_EQ(img.at(35, 25)[0], 255);  // bottom row: free
-  EXPECT_EQ(img.at(35, 15)[0], 0);    // middle row: occupied
-  EXPECT_EQ(img.at(15, 15)[0], 160);  // cell (1, 1): unknown
+  return options;
+}
+
+// The pixel at (x, y) of the map area.
+const std::uint8_t* map_pixel(MapFigure& f, int x, int y) {
+  return f.image.at(f.map_area.x + x, f.map_area.y + y);
+}
+
+TEST(MapImage, CellsAreColouredAndTheEstimateIsDrawn) {
+  const OccupancyGrid map = small_map();
+  MapFigure plain = render_map(map, {}, scale_ten());
+  ASSERT_EQ(plain.scale, 10);
+  ASSERT_EQ(plain.map_area.width, 40);
+  ASSERT_EQ(plain.map_area.height, 30);
+  EXPECT_EQ(map_pixel(plain, 35, 25)[0], 255);  // bottom row: free
+  EXPECT_EQ(map_pixel(plain, 35, 15)[0], 0);    // middle row: occupied
+  EXPECT_EQ(map_pixel(plain, 15, 15)[0], 200);  // cell (1, 1): unknown
   const std::vector<logs::StampedPose> path{{0.0, {0.5, 2.5, 0.0}}, {1.0, {3.5, 2.5, 0.0}}};
-  RgbImage drawn = render_map(map, {{}, path, {}}, options);
-  const std::uint8_t* mid = drawn.at(20, 5);  // the path runs along the top row's centre
+  MapFigure drawn = render_map(map, {{}, path, {}, {}}, scale_ten());
+  const std::uint8_t* mid = map_pixel(drawn, 20, 5);  // the path runs along the top row's centre
   EXPECT_GT(mid[0], 200);
   EXPECT_LT(mid[1], 50);
+}
+
+TEST(MapImage, TheReferenceShowsBesideTheEstimateOverIt) {
+  const OccupancyGrid map = small_map();
+  const std::vector<logs::StampedPose> path{{0.0, {0.5, 2.5, 0.0}}, {1.0, {3.5, 2.5, 0.0}}};
+  MapFigure f = render_map(map, {path, path, {}, {}}, scale_ten());
+  const std::uint8_t* on = map_pixel(f, 20, 5);
+  EXPECT_GT(on[0], 200);  // the estimate on top
+  EXPECT_LT(on[1], 50);
+  const std::uint8_t* beside = map_pixel(f, 20, 9);  // 4 px off the line: the wider reference
+  EXPECT_LT(beside[0], 150);
+  EXPECT_GT(beside[1], 180);
+}
+
+TEST(MapImage, LostStretchesAreOrange) {
+  const OccupancyGrid map = small_map();
+  const std::vector<logs::StampedPose> path{
+      {0.0, {0.5, 2.5, 0.0}}, {1.0, {2.0, 2.5, 0.0}}, {2.0, {3.5, 2.5, 0.0}}};
+  const std::vector<LocalizationState> states{
+      LocalizationState::kTracking, LocalizationState::kTracking, LocalizationState::kLost};
+  MapFigure f = render_map(map, {{}, path, {}, states}, scale_ten());
+  const std::uint8_t* tracked = map_pixel(f, 10, 5);
+  const std::uint8_t* lost = map_pixel(f, 30, 5);
+  EXPECT_LT(tracked[1], 50);  // red
+  EXPECT_GT(lost[0], 200);    // orange
+  EXPECT_GT(lost[1], 100);
+  EXPECT_LT(lost[2], 50);
+}
+
+TEST(MapImage, AxesAndLegendSurroundTheMap) {
+  const OccupancyGrid map = small_map();
+  const std::vector<logs::StampedPose> path{{0.0, {0.5, 0.5, 0.0}}, {1.0, {3.5, 0.5, 0.0}}};
+  const std::vector<Pose2> particles{{3.5, 0.5, 0.0}};
+  MapFigure f = render_map(map, {path, path, particles, {}}, scale_ten());
+  const auto dark = [&](int x0, int y0, int x1, int y1) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) n += f.image.at(x, y)[0] < 100;
+    }
+    return n;
+  };
+  const figure::PlotArea& a = f.map_area;
+  EXPECT_GT(dark(0, a.y, a.x - 1, a.y + a.height), 30);  // y tick labels and title
+  const int below = a.y + a.height + figure::bottom_margin(1);
+  EXPECT_GT(dark(a.x, a.y + a.height + 1, a.x + a.width, below), 30);  // x ticks, title
+  // Legend rows: reference, estimate, final particles, start, end and the scale bar, each
+  // labelled (the labels need more rows than a 4 x 3 map's width).
+  EXPECT_GT(f.image.height - below, 5 * figure::text_height(1));
+  EXPECT_GT(dark(0, below, f.image.width, f.image.height), 200);
 }
 
 TEST(Report, OutputFolderHoldsTheThreeFiles) {

@@ -1,10 +1,13 @@
 #!/usr/bin/python3
-"""Tests of `mote replay --viewer` on the Intel log (issue 20), run by ctest.
+"""Tests of `mote replay --viewer` on the Intel log, run by ctest.
 
 browser: opens viewer.html in headless Chromium at three updates (viewer.html#t=N), checks that
          the page drew without a script error (its title says "mote viewer: update N of M", an
          error sets "mote viewer: error: ..."; Chromium's log holds no uncaught exception) and
-         that the estimate marker (the only #ff00ff pixels) moves between the screenshots.
+         that the estimate marker (the only #ff00ff pixels) moves between the screenshots; then
+         opens it without #t= in a 1400 x 900 window: it must show the last update, with the six
+         timelines' lowest pixel row (the page's data-timelines-bottom, from
+         getBoundingClientRect) inside the viewport (data-viewport-height, at most 900 rows).
 size:    the page for the whole log with every update at the particle cap stays under 20 MB.
 
 Exits 77 (ctest's SKIP_RETURN_CODE) with a message when ../shared/data or chromium is absent.
@@ -22,6 +25,9 @@ import zlib
 SKIP = 77
 MAGENTA_MIN_PIXELS = 20  # the marker is a disc of radius >= 6 px: ~100 px
 MIN_MOVE_PX = 5.0
+FOLD_WIDTH, FOLD_HEIGHT = 1400, 900  # the window the timelines must fit without scrolling
+TIMELINES = 6
+MIN_TIMELINES_BOTTOM = 6 * 30  # six timelines of at least 30 px each end below this row
 
 
 def skip(message):
@@ -93,14 +99,34 @@ def marker_centre(path):
     return sum(xs) / len(xs), sum(ys) / len(ys), len(xs)
 
 
-def chromium(browser, profile, url, *how):
+def chromium(browser, profile, url, *how, size="1100,1350"):
     cmd = [browser, "--headless", "--disable-gpu", "--no-sandbox", "--hide-scrollbars",
-           "--no-first-run", "--user-data-dir=" + profile, "--window-size=1100,1350",
+           "--no-first-run", "--user-data-dir=" + profile, "--window-size=" + size,
            "--enable-logging=stderr", "--v=0", *how, url]
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, f"chromium failed ({done.returncode}): {done.stderr[-2000:]}"
     assert "Uncaught" not in done.stderr, "script error in the page: " + done.stderr[-2000:]
     return done.stdout
+
+
+def check_opening_state(browser, profile, url):
+    """Without #t= at 1400 x 900: the last update, and the timelines above the fold."""
+    dom = chromium(browser, profile, url, "--dump-dom", size=f"{FOLD_WIDTH},{FOLD_HEIGHT}")
+    title = re.search(r"<title>mote viewer: update (\d+) of (\d+)</title>", dom)
+    assert title, "the page has no 'update N of M' title: " + dom[:300]
+    shown, total = int(title.group(1)), int(title.group(2))
+    assert shown == total - 1, f"the page opens at update {shown}, not at the last, {total - 1}"
+    bottom = re.search(r'data-timelines-bottom="(\d+)"', dom)
+    assert bottom, "the page sets no data-timelines-bottom"
+    # Headless Chromium's viewport is the window less its (emulated) browser frame.
+    viewport = re.search(r'data-viewport-height="(\d+)"', dom)
+    assert viewport and 0 < int(viewport.group(1)) <= FOLD_HEIGHT, "no or a wrong viewport height"
+    charts = dom.count("<canvas")
+    assert charts >= TIMELINES + 1, f"{charts} canvases: the map and {TIMELINES} timelines expected"
+    print(f"opening state: update {shown} of {total}, timelines end at row {bottom.group(1)} "
+          f"of a {viewport.group(1)}-pixel viewport")
+    assert MIN_TIMELINES_BOTTOM <= int(bottom.group(1)) <= int(viewport.group(1)), \
+        f"the timelines end at row {bottom.group(1)}, below the {viewport.group(1)}-row viewport"
 
 
 def test_browser(args, work):
@@ -125,6 +151,7 @@ def test_browser(args, work):
     for (a, b) in ((0, 1), (1, 2), (0, 2)):
         move = ((centres[a][0] - centres[b][0]) ** 2 + (centres[a][1] - centres[b][1]) ** 2) ** 0.5
         assert move >= MIN_MOVE_PX, f"the estimate marker moved {move:.1f} px between shots"
+    check_opening_state(browser, profile, url)
 
 
 def test_size(args, work):

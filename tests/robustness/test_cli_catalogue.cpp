@@ -139,8 +139,52 @@ TEST(CliCatalogue, EveryBadFileExitsWithOneLineNamingIt) {
     const std::string named = (dir / (bad.named.empty() ? bad.name : bad.named)).string();
     EXPECT_EQ(r.status, 1) << bad.name << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad.name << ": " << r.err;
-    EXPECT_EQ(r.err.rfind("mote: " + named + ": ", 0), 0U) << bad.name << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("mote replay: " + named + ": ", 0), 0U) << bad.name << ": " << r.err;
     EXPECT_TRUE(one_printable_line(r.err.substr(0, r.err.size() - 1))) << r.err;
+  }
+}
+
+// Mistakes a user makes with good files: the message says what the file is and what to give.
+TEST(CliCatalogue, AnImageOrAStorageFolderSaysWhatToGiveInstead) {
+  const fs::path dir = scratch("cli_mistakes");
+  write_file(dir / "floor.pgm", "P5\n8 8\n255\n" + std::string(64, '\xfe'));
+  write_file(dir / "plan.png", std::string("\x89PNG\r\n\x1a\n", 8) + random_bytes(100, 57));
+  write_file(dir / "floor.yaml",
+             "image: floor.pgm\nresolution: 0.5\norigin: [-2, -2, 0]\n"
+             "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  write_file(dir / "log.clf", good_log());
+  fs::create_directories(dir / "bag");
+  write_file(dir / "bag" / "rec_0.db3", random_bytes(100, 58));
+  const std::string log = " --log " + quoted(dir / "log.clf") + " --out " + quoted(dir / "out");
+  const std::string map = " --map " + quoted(dir / "floor.yaml");
+  struct Case {
+    std::string args;
+    std::string starts;  // the message's start: the prefix and the file
+    std::string says;    // what it must say
+  };
+  const std::vector<Case> cases{
+      {"replay --map " + quoted(dir / "plan.png") + log,
+       "mote replay: " + (dir / "plan.png").string() + ": byte 0: ",
+       "is a PNG image, not a map: a map is a map_server YAML file"},
+      {"replay --map " + quoted(dir / "floor.pgm") + log,
+       "mote replay: " + (dir / "floor.pgm").string() + ": byte 0: ",
+       "PGM image, not a map: a map is a map_server YAML file (image, resolution, origin, "
+       "thresholds); did you mean " +
+           (dir / "floor.yaml").string() + "?"},
+      {"replay" + map + " --log " + quoted(dir / "bag") + " --out " + quoted(dir / "out"),
+       "mote replay: " + (dir / "bag").string() + ": ",
+       "no metadata.yaml); it holds the storage file rec_0.db3, which mote reads alone: give " +
+           (dir / "bag" / "rec_0.db3").string()},
+      {"info " + quoted(dir / "bag"), "mote info: " + (dir / "bag").string() + ": ", "rec_0.db3"},
+      {"calibrate --map " + quoted(dir / "plan.png") + log,
+       "mote calibrate: " + (dir / "plan.png").string() + ": ", "PNG image, not a map"},
+  };
+  for (const Case& c : cases) {
+    const Exit r = mote(c.args, dir);
+    EXPECT_EQ(r.status, 1) << c.args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind(c.starts, 0), 0U) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
 }
 

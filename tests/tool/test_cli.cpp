@@ -149,6 +149,17 @@ TEST(Cli, SimulateThenReplayWritesTheOutputs) {
   EXPECT_EQ(report.find("nan"), std::string::npos);
 }
 
+// The demo writes the viewer page when asked, as mote replay does (it refused the flag).
+TEST(Cli, RunWithViewerWritesThePage) {
+  const fs::path dir = scratch("run_viewer");
+  const Outcome o = mote("run --seconds 10 --out '" + dir.string() + "' --viewer");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string page = slurp(dir / "viewer.html");
+  EXPECT_NE(page.find("<script id=\"mote-data\""), std::string::npos);
+  EXPECT_NE(page.find("\"total_ms\":["), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "map.png"));
+}
+
 // A simulated log spliced by mote kidnap, replayed with --kidnapped-at: the report says whether
 // and when the filter recovered, and the laser range it used (recorded by ROBOTLASER1).
 TEST(Cli, KidnapThenReplayReportsRecovery) {

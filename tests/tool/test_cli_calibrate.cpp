@@ -25,6 +25,11 @@ TEST(CliCalibrate, SimulatedLogGivesALoadableConfigAndPicture) {
            "' --reference '" + (dir / "sim.gt.tum").string() + "' --out '" + out.string() + "'");
   ASSERT_EQ(cal.status, 0) << cal.err;
   EXPECT_NE(cal.out.find("beam          z_hit"), std::string::npos) << cal.out;
+  // One verdict line per fitted group.
+  EXPECT_NE(cal.out.find("\nsensor: fitted once against the reference poses"), std::string::npos)
+      << cal.out;
+  EXPECT_NE(cal.out.find("\nodometry: fitted once against the reference poses"), std::string::npos)
+      << cal.out;
   EXPECT_GT(fs::file_size(out / "calibration.png"), 1000U);
   // The config drives a replay.
   const Outcome rep =
@@ -32,6 +37,53 @@ TEST(CliCalibrate, SimulatedLogGivesALoadableConfigAndPicture) {
            "' --reference '" + (dir / "sim.gt.tum").string() + "' --config '" +
            (out / "config.yaml").string() + "' --out '" + (dir / "rep").string() + "' --quiet");
   EXPECT_EQ(rep.status, 0) << rep.err;
+}
+
+// The number of lines of `text` that start with `prefix`.
+int lines_starting(const std::string& text, const std::string& prefix) {
+  int n = 0;
+  for (std::size_t at = 0; at < text.size(); at = text.find('\n', at) + 1) {
+    n += text.compare(at, prefix.size(), prefix) == 0;
+    if (text.find('\n', at) == std::string::npos) break;
+  }
+  return n;
+}
+
+// Without a reference: one verdict per group, one round is never converged, and the
+// parameters named on a bound are the config's.
+TEST(CliCalibrate, SelfCalibrationEndsWithAVerdictPerGroup) {
+  const fs::path dir = scratch("calibrate_verdict");
+  ASSERT_EQ(mote("simulate --map '" + kMap.string() + "' --out '" + dir.string() +
+                 "' --seconds 200 --scan-rate 1.5")
+                .status,
+            0);
+  const std::string run =
+      "calibrate --map '" + kMap.string() + "' --log '" + (dir / "sim.clf").string() + "' --out '";
+  const Outcome one = mote(run + (dir / "one").string() + "' --rounds 1");
+  ASSERT_EQ(one.status, 0) << one.err;
+  for (const char* group : {"sensor", "odometry"}) {
+    EXPECT_EQ(lines_starting(one.out, std::string(group) + ": NOT converged: one round"), 1)
+        << one.out;
+  }
+  const Outcome three = mote(run + (dir / "three").string() + "'");
+  ASSERT_EQ(three.status, 0) << three.err;
+  for (const char* group : {"sensor: ", "odometry: "}) {
+    const std::string g(group);
+    const int verdicts = lines_starting(three.out, g + "converged in 3 rounds") +
+                         lines_starting(three.out, g + "settled within its statistical spread") +
+                         lines_starting(three.out, g + "NOT converged: round limit");
+    EXPECT_EQ(verdicts, 1) << three.out;
+  }
+  const std::string config = slurp(dir / "three" / "config.yaml");
+  int at_bound = 0;
+  for (std::size_t at = config.find("# AT BOUND"); at != std::string::npos;
+       at = config.find("# AT BOUND", at + 1)) {
+    ++at_bound;
+  }
+  EXPECT_EQ(lines_starting(three.out, "sensor: parameter at its bound: ") +
+                lines_starting(three.out, "odometry: parameter at its bound: "),
+            at_bound)
+      << three.out << config;
 }
 
 TEST(CliCalibrate, ShortLogIsOneLineAndNoConfig) {

@@ -65,7 +65,8 @@ calibrate::CalibrationOptions options_from(const ParsedArgs& args) {
   if (auto r = args.text("reference")) o.reference = *r;
   if (auto path = args.text("config")) {
     LoadedConfig loaded = load_config(*path);
-    for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << '\n';
+    for (const std::string& w : loaded.warnings)
+      std::cerr << "mote calibrate: warning: " << w << '\n';
     o.config = loaded.config;
   }
   if (auto m = args.text("model")) {
@@ -144,6 +145,44 @@ void print_summary(const calibrate::CalibrationResult& r, const std::filesystem:
   std::printf("  config        %s\n", yaml.string().c_str());
 }
 
+// One line per fitted group saying whether it settled, and one per parameter on a bound.
+void print_verdicts(const calibrate::CalibrationResult& r, const calibrate::CalibrationOptions& o) {
+  using Status = calibrate::GroupVerdict::Status;
+  for (const calibrate::GroupVerdict& v : calibrate::judge_calibration(r, o.settle)) {
+    const double pct = 100.0 * v.last_change;
+    const char* name = v.group.c_str();
+    const char* of = v.last_change_of.c_str();
+    switch (v.status) {
+      case Status::kFitOnce:
+        std::printf("%s: fitted once against the reference poses (no rounds)\n", name);
+        break;
+      case Status::kConverged:
+        std::printf("%s: converged in %zu rounds (last change %.1f %% in %s, below %.0f %%)\n",
+                    name, v.rounds, pct, of, 100.0 * o.settle);
+        break;
+      case Status::kWithinSpread:
+        std::printf(
+            "%s: settled within its statistical spread in %zu rounds (last change %.1f %%, every "
+            "alpha within 2 standard errors of the previous round's)\n",
+            name, v.rounds, pct);
+        break;
+      case Status::kNotConverged:
+        if (v.rounds < 2) {
+          std::printf("%s: NOT converged: one round, no change to judge (rerun with --rounds 3)\n",
+                      name);
+        } else {
+          std::printf(
+              "%s: NOT converged: round limit, last change %.1f %% in %s (rerun with "
+              "--rounds %zu)\n",
+              name, pct, of, v.rounds + 3);
+        }
+        break;
+    }
+    for (const std::string& b : v.at_bound)
+      std::printf("%s: parameter at its bound: %s\n", name, b.c_str());
+  }
+}
+
 }  // namespace
 
 int calibrate_command(std::span<char* const> words) {
@@ -157,6 +196,7 @@ int calibrate_command(std::span<char* const> words) {
   const calibrate::CalibrationResult result = calibrate::calibrate(options);
   const std::filesystem::path yaml = calibrate::write_calibration(result, out);
   print_summary(result, yaml);
+  print_verdicts(result, options);
   return 0;
 }
 

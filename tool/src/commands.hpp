@@ -26,11 +26,12 @@ int calibrate_command(std::span<char* const> args);
 /// `mote run`: simulate on the bundled floor plan, then replay with global initialization.
 int run_command(std::span<char* const> args);
 
-/// Runs a replay with a progress bar on stderr (when it is a terminal), writes the outputs into
-/// out_dir and prints the summary table on stdout. Returns the replay's result.
+/// Runs a replay with a progress bar on stderr (when it is a terminal) and writes the outputs
+/// into out_dir, with `viewer` also out_dir/viewer.html. Returns the replay's result.
 replay::ReplayResult replay_and_report(replay::ReplayOptions options,
                                        const std::filesystem::path& out_dir,
-                                       const replay::ReportOptions& report = {});
+                                       const replay::ReportOptions& report = {},
+                                       bool viewer = false);
 
 /// The verdict on a finished run: prints "mote COMMAND: warning: ..." on stderr and returns
 /// replay::kExitEndsLost when it ends lost, else returns 0.

@@ -1,7 +1,10 @@
 // mote: the command-line tool (replay, simulate, run). Exit status 0 on success, 2 for bad
 // usage, 1 for bad input or a failed run; errors are one line on stderr.
+#include <algorithm>
+#include <array>
 #include <iostream>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "args.hpp"
@@ -30,6 +33,16 @@ constexpr std::string_view kHelp =
     "            initialization and print the summary (what `make run` calls)\n\n"
     "`mote COMMAND --help` lists each command's flags with units and defaults;\n"
     "`mote --version` prints the version and the kernel variant in use (MOTE_ISA).\n";
+
+constexpr std::array<std::string_view, 7> kCommands{"replay", "simulate", "kidnap",   "crowd",
+                                                    "run",    "info",     "calibrate"};
+
+// "mote COMMAND: " for a command's errors, "mote: " before there is one.
+std::string prefix(std::string_view command) {
+  return std::ranges::find(kCommands, command) != kCommands.end()
+             ? "mote " + std::string(command) + ": "
+             : std::string("mote: ");
+}
 
 int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "replay") return mote::tool::replay_command(rest);
@@ -65,10 +78,10 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << '\n';
     return 2;
   } catch (const mote::Error& e) {
-    std::cerr << "mote: " << e.what() << '\n';
+    std::cerr << prefix(argv[1]) << e.what() << '\n';
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "mote: " << e.what() << '\n';
+    std::cerr << prefix(argv[1]) << e.what() << '\n';
     return 1;
   }
 }

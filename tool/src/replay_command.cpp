@@ -165,11 +165,20 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
 
 replay::ReplayResult replay_and_report(replay::ReplayOptions options,
                                        const std::filesystem::path& out_dir,
-                                       const replay::ReportOptions& report) {
+                                       const replay::ReportOptions& report, bool viewer) {
+  std::optional<replay::ViewerRecorder> recorder;
+  if (viewer) {
+    // The recorder quantizes against the map the run loads; loading it twice costs milliseconds.
+    recorder.emplace(load_map(options.map));
+    options.on_update = [&recorder](const Localizer& filter, const logs::ScanFrame& frame) {
+      recorder->record(filter, frame);
+    };
+  }
   options.progress = make_progress(options.log, options.reader);
   replay::ReplayResult result = replay::run_replay(options);
   finish_progress(options.progress);
   replay::write_replay_outputs(out_dir, result, report);
+  if (recorder) replay::write_viewer_html(out_dir / "viewer.html", result, recorder->recording());
   return result;
 }
 
@@ -188,17 +197,8 @@ int replay_command(std::span<char* const> words) {
   }
   const std::filesystem::path out = args.required("out");
   const replay::ReportOptions report{.profile = args.has("profile")};
-  replay::ReplayOptions options = replay_options(args);
-  std::optional<replay::ViewerRecorder> viewer;
-  if (args.has("viewer")) {
-    // The recorder quantizes against the map the run loads; loading it twice costs milliseconds.
-    viewer.emplace(load_map(options.map));
-    options.on_update = [&viewer](const Localizer& filter, const logs::ScanFrame& frame) {
-      viewer->record(filter, frame);
-    };
-  }
-  const replay::ReplayResult result = replay_and_report(std::move(options), out, report);
-  if (viewer) replay::write_viewer_html(out / "viewer.html", result, viewer->recording());
+  const replay::ReplayResult result =
+      replay_and_report(replay_options(args), out, report, args.has("viewer"));
   for (const std::string& w : result.reader.warnings)
     std::cerr << "mote replay: warning: " << w << '\n';
   if (!args.has("quiet")) {

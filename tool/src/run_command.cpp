@@ -12,13 +12,14 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 6> kFlags{{
+constexpr std::array<FlagSpec, 7> kFlags{{
     {"out", "DIR", "output folder (default ./mote-run)"},
     {"seconds", "S", "simulated time, s (default 60)"},
     {"seed", "N", "seed of the simulation and the filter (default 1)"},
     {"max-particles", "N", "KLD upper bound (default 500000, the library's)"},
     {"min-particles", "N", "KLD lower bound once converged (default 500)"},
     {"threads", "N", "worker threads, 0 = every core (default 0)"},
+    {"viewer", "", "also DIR/viewer.html: the run in a browser (as mote replay --viewer)"},
 }};
 
 constexpr std::string_view kUsage = "mote run [--out DIR] [flags]";
@@ -26,7 +27,8 @@ constexpr std::string_view kAbout =
     "Simulates a robot on the bundled 20 m x 15 m office floor plan, replays the log with global\n"
     "initialization (the filter is not told where the robot starts) and prints the summary:\n"
     "converged or not, accuracy against the true poses, update time, particles. DIR holds\n"
-    "sim.clf, sim.gt.tum, report.json, trajectory.tum and map.png.";
+    "sim.clf, sim.gt.tum, report.json, trajectory.tum, updates.csv and map.png (and viewer.html\n"
+    "with --viewer).";
 
 replay::ReplayOptions run_options(const ParsedArgs& args, const sim::SimulationFiles& files,
                                   std::uint64_t seed) {
@@ -66,7 +68,7 @@ int run_command(std::span<char* const> words) {
   std::cout << "mote run: replaying " << drive.frames.size()
             << " scans with global initialization\n";
   const replay::ReplayResult result =
-      replay_and_report(run_options(args, files, sim_config.seed), out);
+      replay_and_report(run_options(args, files, sim_config.seed), out, {}, args.has("viewer"));
   replay::print_summary(std::cout, result);
   std::cout << "  outputs               " << std::filesystem::absolute(out).string() << '\n';
   return warn_unless_localized("run", result);

@@ -261,6 +261,12 @@ struct CalibrationRound {
   std::size_t poses = 0;                  ///< poses the fits used
   double largest_change = 0;              ///< against the previous round (relative)
   std::string largest_change_of;          ///< which parameter
+  /// The same per group: the sensor model (sigma_hit, z_hit, tracking_tempering) and the
+  /// motion model (the odometry noise, Ackermann's alphas).
+  double sensor_change = 0;
+  std::string sensor_change_of;
+  double motion_change = 0;
+  std::string motion_change_of;
 };
 
 /// Plot data: the per-beam range error z - z* and the odometry residuals.
@@ -285,6 +291,27 @@ struct CalibrationResult {
   CalibrationSamples samples;
   double wall_s = 0;
 };
+
+/// Whether one group of fitted parameters (the sensor model, the motion model) settled.
+struct GroupVerdict {
+  enum class Status {
+    kFitOnce,       ///< fitted once against reference poses: no rounds to settle
+    kConverged,     ///< the last round moved no parameter by more than `settle`
+    kWithinSpread,  ///< moved more, but every alpha within 2 standard errors of both fits
+    kNotConverged,  ///< stopped at the round limit while still moving
+  };
+  std::string group;  ///< "sensor" or "odometry"
+  Status status = Status::kFitOnce;
+  std::size_t rounds = 0;
+  double last_change = 0;  ///< relative (a weight's absolute), as CalibrationRound's
+  std::string last_change_of;
+  std::vector<std::string> at_bound;  ///< the group's parameters on a bound, "name (bound)"
+};
+
+/// The verdict per group on a calibration, with `settle` the threshold the rounds stopped at
+/// (CalibrationOptions::settle). docs/calibration.md explains the criteria.
+[[nodiscard]] std::vector<GroupVerdict> judge_calibration(const CalibrationResult& result,
+                                                          double settle);
 
 /// Reads the log (and reference), fits, and localizes again as needed. Throws Error (one line)
 /// for a log too short to fit from, a log without odometry, or a filter that never converges.

@@ -1,8 +1,10 @@
 #pragma once
 /// \file
-/// map.png: the occupancy grid (free white, occupied black, unknown grey) with the reference
-/// trajectory (green), the estimated trajectory (red) and a particle cloud (blue dots) drawn in,
-/// cropped to the region of interest and scaled up when the map is small.
+/// map.png: the occupancy grid (free white, occupied black, unknown grey) cropped to the region
+/// of interest and scaled up when the map is small, with the reference trajectory (wide, light
+/// green, under), the estimated trajectory (thin red on top, orange where the filter was lost),
+/// the final particles (blue dots), the start (ring) and end (square) of the estimate; around it
+/// axes in metres, and below a legend and a scale bar.
 
 #include <cstdint>
 #include <filesystem>
@@ -10,7 +12,9 @@
 #include <vector>
 
 #include "mote/core/pose.hpp"
+#include "mote/engine/localization_state.hpp"
 #include "mote/logs/tum.hpp"
+#include "mote/maps/figure.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 #include "mote/maps/rgb_image.hpp"
 
@@ -18,9 +22,12 @@ namespace mote::replay {
 
 /// What is drawn over the map, all in the map frame.
 struct MapOverlay {
-  std::span<const logs::StampedPose> reference;  ///< drawn as a green polyline
-  std::span<const logs::StampedPose> estimate;   ///< drawn as a red polyline
+  std::span<const logs::StampedPose> reference;  ///< drawn as a wide light green polyline
+  std::span<const logs::StampedPose> estimate;   ///< drawn as a thin red polyline
   std::span<const Pose2> particles;              ///< drawn as blue dots
+  /// The localization state after each estimate pose's update (empty, or one per estimate pose):
+  /// segments ending at a lost update are drawn orange.
+  std::span<const LocalizationState> states;
 };
 
 /// Rendering choices.
@@ -30,10 +37,17 @@ struct MapRenderOptions {
   int max_scale = 8;        ///< largest integer scale factor
 };
 
-/// Draws the map and the overlay. The crop is the bounding box of both trajectories plus the
-/// margin (the whole map when there are none), clamped to the map.
-[[nodiscard]] RgbImage render_map(const OccupancyGrid& map, const MapOverlay& overlay,
-                                  const MapRenderOptions& options = {});
+/// The picture, and where in it the map's cells are.
+struct MapFigure {
+  RgbImage image;
+  figure::PlotArea map_area;  ///< pixels of the cropped grid, `scale` pixels per cell
+  int scale = 1;
+};
+
+/// Draws the map, the overlay, the axes and the legend. The crop is the bounding box of both
+/// trajectories plus the margin (the whole map when there are none), clamped to the map.
+[[nodiscard]] MapFigure render_map(const OccupancyGrid& map, const MapOverlay& overlay,
+                                   const MapRenderOptions& options = {});
 
 /// render_map then write_png.
 void write_map_png(const std::filesystem::path& path, const OccupancyGrid& map,

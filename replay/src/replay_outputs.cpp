@@ -1,0 +1,36 @@
+// write_replay_outputs: the files of `mote replay --out DIR` (docs/outputs.md).
+#include <fstream>
+#include <vector>
+
+#include "mote/core/error.hpp"
+#include "mote/logs/tum.hpp"
+#include "mote/replay/map_image.hpp"
+#include "mote/replay/profile.hpp"
+#include "mote/replay/report.hpp"
+#include "mote/replay/report_json.hpp"
+
+namespace mote::replay {
+
+void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,
+                          const ReportOptions& options) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(dir.string() + ": cannot create output folder: " + ec.message());
+  std::ofstream json(dir / "report.json");
+  write_report_json(json, result, options);
+  if (!json.good()) throw Error((dir / "report.json").string() + ": cannot write");
+  if (options.profile) {
+    std::ofstream folded(dir / "profile.folded");
+    write_folded_stacks(folded, profile_run(result));
+    if (!folded.good()) throw Error((dir / "profile.folded").string() + ": cannot write");
+  }
+  logs::write_tum(dir / "trajectory.tum", result.trajectory);
+  write_updates_csv(dir / "updates.csv", result);
+  std::vector<LocalizationState> states;
+  states.reserve(result.updates.size());
+  for (const UpdateRecord& u : result.updates) states.push_back(u.state);
+  const MapOverlay overlay{result.reference, result.trajectory, result.final_particles, states};
+  write_map_png(dir / "map.png", result.map, overlay);
+}
+
+}  // namespace mote::replay
