@@ -1,7 +1,9 @@
 #include "blocked_beams.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -35,31 +37,55 @@ double mean_endpoint_range(const BeamSet& beams) {
 
 }  // namespace
 
-bool BlockedBeamFilter::blocked_at(const BeamSet& beams, std::size_t b, const SensorSample& s,
-                                   const MapField& map, double band) {
-  const double r = beams.range[b];
-  if (!(r < beams.range_max)) return false;  // a no-return has no endpoint
-  const FieldWalker walk(map.grid, map.field);
-  const double k = walk.inv_cell();
-  const double a = s.theta + beams.angle[b];
-  const Point2 u = walk.cell_direction(std::cos(a), std::sin(a));
+Point2 BlockedBeamFilter::direction(std::size_t b, const SensorSample& s) const {
+  return {s.cos_theta * beam_cos_[b] - s.sin_theta * beam_sin_[b],
+          s.sin_theta * beam_cos_[b] + s.cos_theta * beam_sin_[b]};
+}
+
+bool BlockedBeamFilter::ends_on_wall(const BeamSet& beams, std::size_t b, const SensorSample& s,
+                                     const FieldWalker& walk, double sigma_hit) const {
   // An endpoint within sigma_hit of a wall is a hit wherever the ray went (the likelihood
-  // field scores it near its peak); only the others are traced, first past the endpoint
-  // (where a wall within the band ends most of them), then up to it.
-  const double near_wall = std::max(map.mixture.sigma_hit * k, 1.5);
-  const double at_end = walk.cells_to_wall({s.origin.x + r * k * u.x, s.origin.y + r * k * u.y});
-  if (at_end < near_wall) return false;  // on a wall, or off the map
+  // field scores it near its peak). Off the map counts as on a wall: nothing to trace.
+  const double k = walk.inv_cell();
+  const double r = beams.range[b] * k;
+  const Point2 u = direction(b, s);
+  const double near_wall = std::max(sigma_hit * k, 1.5);
+  return walk.cells_to_wall({s.origin.x + r * u.x, s.origin.y + r * u.y}) < near_wall;
+}
+
+bool BlockedBeamFilter::ray_free(const BeamSet& beams, std::size_t b, const SensorSample& s,
+                                 const FieldWalker& walk, double band) const {
+  // Traced first past the endpoint (where a wall within the band ends most rays), then up to it.
+  const double k = walk.inv_cell();
+  const double r = beams.range[b];
+  const Point2 u = direction(b, s);
   const double beyond = std::min(r + band, static_cast<double>(beams.range_max));
   return walk.free(s.origin, u, r * k, beyond * k) && walk.free(s.origin, u, 0.0, r * k);
 }
 
 bool BlockedBeamFilter::majority_blocked(const BeamSet& beams, std::size_t b, const MapField& map,
                                          double band) const {
+  if (!(beams.range[b] < beams.range_max)) return false;  // a no-return has no endpoint
+  const FieldWalker walk(map.grid, map.field);
   const double needed = kAgreement * total_;
-  double blocked = 0.0;
+  // The samples whose endpoint lies on a wall first (a lookup each), then rays traced for the
+  // others until the answer is settled: the same answer as in any order, as each sample's
+  // verdict is its own.
   double clear = 0.0;
-  for (const SensorSample& s : samples_) {
-    (blocked_at(beams, b, s, map, band) ? blocked : clear) += s.weight;
+  static_assert(kSample <= 64, "a bit per sample");
+  std::uint64_t traced = 0;  // bit i: sample i needs its ray traced
+  for (std::size_t i = 0; i < samples_.size(); ++i) {
+    if (ends_on_wall(beams, b, samples_[i], walk, map.mixture.sigma_hit)) {
+      clear += samples_[i].weight;
+    } else {
+      traced |= std::uint64_t{1} << i;
+    }
+  }
+  if (clear >= total_ - needed) return false;
+  double blocked = 0.0;
+  for (; traced != 0; traced &= traced - 1) {
+    const SensorSample& s = samples_[static_cast<std::size_t>(std::countr_zero(traced))];
+    (ray_free(beams, b, s, walk, band) ? blocked : clear) += s.weight;
     if (blocked > needed) return true;
     if (clear >= total_ - needed) return false;
   }
@@ -99,14 +125,23 @@ std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleVie
   samples_.clear();
   total_ = 0.0;
   const std::size_t stride = std::max<std::size_t>(1, (n + kSample - 1) / kSample);
+  const double grid_theta = map.grid.origin().theta;  // the grid frame's heading in the map's
   for (std::size_t i = 0; i < n; i += stride) {
     const double w = std::exp(static_cast<double>(p.logw[i]));
     if (!(w > 0.0) || !is_finite(p.pose(i))) continue;
     const Pose2 sensor = compose(p.pose(i), beams.sensor_pose);
-    samples_.push_back({walk.cell_point({sensor.x, sensor.y}), sensor.theta, w});
+    const double theta = sensor.theta - grid_theta;
+    samples_.push_back(
+        {walk.cell_point({sensor.x, sensor.y}), std::cos(theta), std::sin(theta), w});
     total_ += w;
   }
   if (!(total_ > 0.0)) return 0;
+  beam_cos_.resize(beams.size());
+  beam_sin_.resize(beams.size());
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    beam_cos_[b] = std::cos(static_cast<double>(beams.angle[b]));
+    beam_sin_[b] = std::sin(static_cast<double>(beams.angle[b]));
+  }
   // Beams are independent: decided in parallel, each by its own fixed sample order.
   drop_.assign(beams.size(), 0);
   par::for_each_chunk(beams.size(), kBeamGrain, [&](std::size_t begin, std::size_t end) {

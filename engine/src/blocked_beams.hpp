@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "field_walker.hpp"
 #include "map_field.hpp"
 #include "mote/engine/beams.hpp"
 #include "mote/engine/estimate.hpp"
@@ -67,23 +68,34 @@ class BlockedBeamFilter {
   [[nodiscard]] static double endpoint_spread(const PoseEstimate& cluster, double range);
 
  private:
-  // One sampled particle: its sensor in grid-frame cell units, and its weight.
+  // One sampled particle: its sensor in grid-frame cell units, the cosine and sine of its
+  // heading in the grid frame, and its weight.
   struct SensorSample {
     Point2 origin;
-    double theta = 0.0;
+    double cos_theta = 1.0;
+    double sin_theta = 0.0;
     double weight = 0.0;
   };
-  // Whether beam b is blocked at sample s (cells per metre k, hit band in metres).
-  [[nodiscard]] static bool blocked_at(const BeamSet& beams, std::size_t b, const SensorSample& s,
-                                       const MapField& map, double band);
-  // Whether more than kAgreement of the samples' weight finds beam b blocked. Samples are
-  // visited in order until the answer is settled, so a clear beam costs half the sample.
+  // Beam b's unit direction in the grid frame at sample s: the sample's heading plus the
+  // beam's angle, by angle addition (no trigonometry per pair).
+  [[nodiscard]] Point2 direction(std::size_t b, const SensorSample& s) const;
+  // Whether beam b's endpoint at sample s lies within sigma_hit (m) of a wall, or off the map.
+  [[nodiscard]] bool ends_on_wall(const BeamSet& beams, std::size_t b, const SensorSample& s,
+                                  const FieldWalker& walk, double sigma_hit) const;
+  // Whether the map holds no obstacle along beam b at sample s up to its reading plus the hit
+  // band (m): the beam is blocked there (given that its endpoint is not on a wall).
+  [[nodiscard]] bool ray_free(const BeamSet& beams, std::size_t b, const SensorSample& s,
+                              const FieldWalker& walk, double band) const;
+  // Whether more than kAgreement of the samples' weight finds beam b blocked (at most 64
+  // samples: kSample).
   [[nodiscard]] bool majority_blocked(const BeamSet& beams, std::size_t b, const MapField& map,
                                       double band) const;
 
   static constexpr std::size_t kBeamGrain = 16;  // beams per parallel task
 
   std::vector<SensorSample> samples_;
+  std::vector<double> beam_cos_;  // per beam: cosine and sine of its angle in the sensor frame
+  std::vector<double> beam_sin_;
   std::vector<unsigned char> drop_;  // per beam: 1 when left out
   double total_ = 0.0;               // the samples' weight
 };
