@@ -30,7 +30,7 @@ FixedPointGrid::FixedPointGrid(const OccupancyGrid& map)
 void ViewerRecorder::record(const Localizer& filter, const logs::ScanFrame& frame) {
   record_particles(filter.particles());
   const LocalizationEstimate& estimate = filter.estimate();
-  record_endpoints(estimate.best().mean, frame.scan);
+  record_endpoints(estimate.refined.pose, frame.scan);  // the reported pose
   record_clusters(estimate);
 }
 
