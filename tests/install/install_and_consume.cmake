@@ -59,7 +59,12 @@ run_step("configure logs consumer" ${CMAKE_COMMAND} -S ${CONSUMER_LOGS_SOURCE_DI
          -B ${WORK_DIR}/build-logs -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
          -DCMAKE_CXX_FLAGS=${flags} -DCMAKE_EXE_LINKER_FLAGS=${flags})
 run_step("build logs consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/build-logs)
-file(READ ${WORK_DIR}/build-logs/CMakeFiles/consumer_logs.dir/link.txt link_line)
+# The link line: Makefiles keep it in link.txt, Ninja in build.ninja (CMAKE_GENERATOR, as CI sets).
+set(link_file ${WORK_DIR}/build-logs/CMakeFiles/consumer_logs.dir/link.txt)
+if(NOT EXISTS ${link_file})
+  set(link_file ${WORK_DIR}/build-logs/build.ninja)
+endif()
+file(READ ${link_file} link_line)
 string(REGEX MATCH "libmote_(maps|raycast|engine|calibrate|sim|replay)[.]" other "${link_line}")
 if(other)
   message(FATAL_ERROR "the logs consumer links ${other}: mote::logs must stand alone\n${link_line}")
