@@ -122,6 +122,17 @@ TEST(Cli, AMisspelledFlagGetsTheFlagItMeant) {
   EXPECT_EQ(unrelated.err.find("did you mean"), std::string::npos) << unrelated.err;
 }
 
+TEST(Cli, AMisspelledCommandGetsTheCommandItMeant) {
+  const Outcome typo = mote("replya --map m.yaml");
+  EXPECT_EQ(typo.status, 2);
+  EXPECT_NE(typo.err.find("unknown command 'replya' (did you mean 'mote replay'?)"),
+            std::string::npos)
+      << typo.err;
+  const Outcome unrelated = mote("frobnicate");
+  EXPECT_EQ(unrelated.status, 2);
+  EXPECT_EQ(unrelated.err.find("did you mean"), std::string::npos) << unrelated.err;
+}
+
 TEST(Cli, BadInputExitsWithOneNamingTheFile) {
   const fs::path dir = scratch("bad_input");
   const fs::path yaml = dir / "broken.yaml";

@@ -9,6 +9,7 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "mote/core/did_you_mean.hpp"
 #include "mote/core/error.hpp"
 #include "mote/engine/isa.hpp"
 
@@ -60,8 +61,10 @@ int dispatch(std::string_view command, std::span<char* const> rest) {
     std::cout << kHelp;
     return 0;
   }
-  throw mote::tool::UsageError("mote: unknown command '" + std::string(command) +
-                               "' (see mote --help)");
+  const std::string best = mote::closest_word(command, kCommands);
+  throw mote::tool::UsageError("mote: unknown command '" + std::string(command) + "'" +
+                               (best.empty() ? "" : " (did you mean 'mote " + best + "'?)") +
+                               " (see mote --help)");
 }
 
 }  // namespace
