@@ -69,7 +69,10 @@ TEST(CliCalibrate, SelfCalibrationEndsWithAVerdictPerGroup) {
   ASSERT_EQ(three.status, 0) << three.err;
   for (const char* group : {"sensor: ", "odometry: "}) {
     const std::string g(group);
-    const int verdicts = lines_starting(three.out, g + "converged in 3 rounds") +
+    // Converged in 2 rounds (the sensor and odometry settled) or at the limit of 3: the filter's
+    // trajectory differs in the last bits between compilers, and so may the round it settles in.
+    const int verdicts = lines_starting(three.out, g + "converged in 2 rounds") +
+                         lines_starting(three.out, g + "converged in 3 rounds") +
                          lines_starting(three.out, g + "settled within its statistical spread") +
                          lines_starting(three.out, g + "NOT converged: round limit");
     EXPECT_EQ(verdicts, 1) << three.out;
