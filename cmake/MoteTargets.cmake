@@ -100,25 +100,20 @@ function(mote_add_library name)
 endfunction()
 
 # The headers every test file parses (GoogleTest, Eigen's core, the standard library's usual
-# ones: ~2 s of each test file's compile time), precompiled. With g++ every test executable
-# reuses one header compiled by mote_test_pch (g++ checks that the flags agree and otherwise
-# parses the headers as usual); clang refuses a header built with other macros, so there each
-# executable compiles its own.
+# ones: ~2 s of each test file's compile time), precompiled once by mote_test_pch and reused by
+# every test executable (g++ and clang check that the flags agree; the few macros a test
+# executable defines itself are not used by these headers).
 set(MOTE_TEST_PCH <gtest/gtest.h> <Eigen/Core> <algorithm> <cmath> <cstdint> <filesystem>
                   <fstream> <random> <span> <string> <vector>)
 function(mote_test_precompiled_headers name)
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
-    if(NOT TARGET mote_test_pch)
-      file(WRITE ${PROJECT_BINARY_DIR}/mote_test_pch.cpp "// compiles the tests' header\n")
-      add_library(mote_test_pch STATIC ${PROJECT_BINARY_DIR}/mote_test_pch.cpp)
-      target_link_libraries(mote_test_pch PRIVATE mote_test_support GTest::gtest Eigen3::Eigen)
-      mote_target_options(mote_test_pch)
-      target_precompile_headers(mote_test_pch PRIVATE ${MOTE_TEST_PCH})
-    endif()
-    target_precompile_headers(${name} REUSE_FROM mote_test_pch)
-  else()
-    target_precompile_headers(${name} PRIVATE ${MOTE_TEST_PCH})
+  if(NOT TARGET mote_test_pch)
+    file(WRITE ${PROJECT_BINARY_DIR}/mote_test_pch.cpp "// compiles the tests' header\n")
+    add_library(mote_test_pch STATIC ${PROJECT_BINARY_DIR}/mote_test_pch.cpp)
+    target_link_libraries(mote_test_pch PRIVATE mote_test_support GTest::gtest)
+    mote_target_options(mote_test_pch)
+    target_precompile_headers(mote_test_pch PRIVATE ${MOTE_TEST_PCH})
   endif()
+  target_precompile_headers(${name} REUSE_FROM mote_test_pch)
 endfunction()
 
 # mote_add_test(<name> SOURCES ... [LIBS ...]): a GoogleTest executable registered with ctest.
