@@ -50,10 +50,14 @@ macro(mote_apply_sanitizers)
   endif()
   if(MOTE_BUILD_FUZZERS)
     mote_check_fuzzing_toolchain()
-    # Coverage instrumentation everywhere, libFuzzer's main only in the fuzz_* executables.
-    add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
-                        -fno-sanitize-recover=all)
-    add_link_options(-fsanitize=address,undefined)
+    # The fuzzers run under AddressSanitizer + UndefinedBehaviorSanitizer: the whole build is
+    # compiled with them unless MOTE_SANITIZE already is (the tests then run beside the fuzzers
+    # in one build). tests/fuzz adds the coverage that guides libFuzzer to the code it reads with.
+    if(NOT MOTE_SANITIZE)
+      add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer
+                          -fno-sanitize-recover=all)
+      add_link_options(-fsanitize=address,undefined)
+    endif()
   endif()
 endmacro()
 
@@ -64,9 +68,10 @@ function(mote_check_fuzzing_toolchain)
                         "${CMAKE_CXX_COMPILER_ID}: configure a new build folder with "
                         "-DCMAKE_CXX_COMPILER=clang++ (or run `make fuzz`)")
   endif()
-  if(MOTE_SANITIZE)
-    message(FATAL_ERROR "MOTE_BUILD_FUZZERS=ON sets its own sanitizers (address, undefined); "
-                        "leave MOTE_SANITIZE empty")
+  if(MOTE_SANITIZE AND NOT ("address" IN_LIST MOTE_SANITIZE AND "undefined" IN_LIST MOTE_SANITIZE))
+    message(FATAL_ERROR "MOTE_BUILD_FUZZERS=ON runs the fuzzers under address and undefined, not "
+                        "MOTE_SANITIZE=${MOTE_SANITIZE}: leave MOTE_SANITIZE empty or set "
+                        "\"address;undefined\"")
   endif()
   include(CheckCXXSourceCompiles)
   set(CMAKE_REQUIRED_FLAGS -fsanitize=fuzzer,address,undefined)
