@@ -1,7 +1,9 @@
 // `mote run` (what `make run` calls): simulate on the bundled floor plan, then replay the log
 // with global initialization and print whether and how well the filter localized.
 #include <array>
+#include <filesystem>
 #include <iostream>
+#include <string>
 
 #include "args.hpp"
 #include "commands.hpp"
@@ -49,6 +51,13 @@ replay::ReplayOptions run_options(const ParsedArgs& args, const sim::SimulationF
   return o;
 }
 
+// The bundled map's path as the user would type it: relative to the working directory when the
+// map lies under it (`make run` in the checkout), else as it is.
+std::string shown(const std::filesystem::path& path) {
+  const std::filesystem::path relative = path.lexically_relative(std::filesystem::current_path());
+  return !relative.empty() && *relative.begin() != ".." ? relative.string() : path.string();
+}
+
 }  // namespace
 
 int run_command(std::span<char* const> words) {
@@ -62,7 +71,7 @@ int run_command(std::span<char* const> words) {
   sim_config.seconds = args.real("seconds", 1.0, 3600.0).value_or(60.0);
   sim_config.seed = static_cast<std::uint64_t>(args.integer("seed", 0, INT64_MAX).value_or(1));
   std::cout << "mote run: simulating " << sim_config.seconds << " s on "
-            << sim::bundled_map_path().string() << '\n';
+            << shown(sim::bundled_map_path()) << '\n';
   const sim::Simulation drive = sim::simulate(load_map(sim::bundled_map_path()), sim_config);
   const sim::SimulationFiles files = sim::write_simulation(drive, out);
   std::cout << "mote run: replaying " << drive.frames.size()
