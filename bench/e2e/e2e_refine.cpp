@@ -9,11 +9,13 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "e2e_world.hpp"
+#include "mote/engine/beams.hpp"
 #include "mote/engine/localizer_config.hpp"
 #include "mote/engine/scan_match.hpp"
 #include "mote/maps/signed_distance_field.hpp"
@@ -22,16 +24,18 @@ namespace mote::bench {
 
 namespace {
 
-// The scan's endpoints in the robot frame, the valid readings only (no-returns carry no
-// endpoint), as Localizer::Impl::select_endpoints makes them.
+// The scan's endpoints in the robot frame as Localizer::Impl::select_endpoints makes them: every
+// reading select_beams keeps (no decimation, no no-returns), placed from the sensor's pose.
 std::vector<Point2> endpoints(const LaserScan& scan) {
+  BeamSet readings;
+  select_beams(scan,
+               BeamSelection{.max_beams = std::numeric_limits<int>::max(), .keep_max_range = false},
+               readings);
   std::vector<Point2> ends;
-  const Pose2& s = scan.sensor_pose;
-  for (std::size_t b = 0; b < scan.size(); ++b) {
-    const float r = scan.ranges[b];
-    if (!std::isfinite(r) || r < scan.range_min || r >= scan.range_max) continue;
-    const double a = s.theta + scan.beam_angle(b);
-    ends.push_back({s.x + r * std::cos(a), s.y + r * std::sin(a)});
+  const Pose2& s = readings.sensor_pose;
+  for (std::size_t b = 0; b < readings.size(); ++b) {
+    const double a = s.theta + readings.angle[b];
+    ends.push_back({s.x + readings.range[b] * std::cos(a), s.y + readings.range[b] * std::sin(a)});
   }
   return ends;
 }
