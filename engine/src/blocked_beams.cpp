@@ -115,12 +115,11 @@ bool BlockedBeamFilter::focused_on(const BeamSet& beams, const MapField& map,
 }
 
 std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleView& p,
-                                          const MapField& map,
-                                          const std::vector<PoseEstimate>& clusters) {
+                                          const MapField& map, bool focused) {
   const std::size_t n = p.size();
   const double band = hit_band(map.mixture, beams.range_max);
   if (n == 0 || beams.empty() || !std::isfinite(band)) return 0;
-  if (!focused_on(beams, map, clusters)) return 0;
+  if (!focused) return 0;
   const FieldWalker walk(map.grid, map.field);
   samples_.clear();
   total_ = 0.0;

@@ -36,17 +36,19 @@ class BlockedBeamFilter {
   /// explains it; here it is the share of a 64-particle sample whose ray runs free past the
   /// reading, which the cloud's own spread keeps below 0.99 for most crowd readings: at 0.99
   /// the Intel crowd (mote crowd) carried the filter off (ATE 3.72 m against 0.058 m at 0.5).
-  /// What a wrong but tight belief drops is still seen: the localization state judges every
-  /// reading at the refined pose, not the beams this filter keeps.
+  /// What a wrong but tight belief drops is still partly seen: the localization state's hit
+  /// share judges every reading at the refined pose; its see-through share judges the weighed
+  /// beams (see_through.hpp), which this filter has thinned.
   static constexpr double kAgreement = 0.5;
   /// Share of the belief that settled hypotheses must hold for the filter to run (focused()).
   static constexpr double kFocusedWeight = 0.9;
 
   /// Removes the blocked beams from `beams` (keeping their order); returns how many it removed.
-  /// `map` supplies the map, its distance field and the sensor mixture; `clusters` are the
-  /// belief's clusters before this scan. Nothing is removed unless the belief is focused().
+  /// `map` supplies the map, its distance field and the sensor mixture; `focused` is focused()
+  /// of the belief before this scan, as the Localizer judged it once for the whole update
+  /// (the state and tracking tempering read the same verdict). Nothing is removed unless it is.
   std::size_t operator()(BeamSet& beams, const ConstParticleView& particles, const MapField& map,
-                         const std::vector<PoseEstimate>& clusters);
+                         bool focused);
 
   /// Whether the belief has settled closely enough to say where the walls are: clusters that
   /// each hold at least 1 - kFocusedWeight of it and whose spread moves a typical endpoint by

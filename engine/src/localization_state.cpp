@@ -17,14 +17,14 @@ const char* name_of(LocalizationState state) noexcept {
 }
 
 LocalizationState LocalizationMonitor::update(double see_through, double hit_share,
-                                              double best_weight) noexcept {
+                                              bool focused) noexcept {
   const double misfit = see_through + (1.0 - hit_share);
   if (!std::isfinite(misfit)) return state_;
   smoothed_ = started_ ? smoothed_ + config_.smoothing * (misfit - smoothed_) : misfit;
   started_ = true;
   if (smoothed_ > config_.lost_misfit) {
     state_ = LocalizationState::kLost;
-  } else if (best_weight >= config_.settled_weight) {
+  } else if (focused) {
     state_ = LocalizationState::kTracking;
   } else {
     state_ = LocalizationState::kUncertain;

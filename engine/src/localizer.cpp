@@ -81,6 +81,7 @@ void Localizer::Impl::start_fresh() {
   recovery.reset();
   monitor.reset();
   reset_relocalization();
+  focus_judged = false;
   odometry_noise.reset();
   last_fix = {};
   motion = make_motion(config);
@@ -88,6 +89,11 @@ void Localizer::Impl::start_fresh() {
   stats.particles = store.size();
   initialized = true;
   executor.run([&] { update_estimate(); });
+  // No scan has been matched to the new belief: the refined estimate is its best hypothesis,
+  // unrefined and without a covariance (nothing of the previous run's, which a live node
+  // publishing after a reset would otherwise send), and the state is the monitor's fresh one.
+  estimate.refined = ScanMatch{.pose = estimate.best().mean};
+  stats.state = monitor.state();
 }
 
 void Localizer::initialize(const Pose2& mean, const Eigen::Matrix3d& covariance) {
@@ -123,6 +129,7 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
       }
       moved = has_odometry;
       timed(stats.ms.sensor, [&] {
+        if (!focus_judged) judge_focus();
         drop_blocked_beams();
         weigh();
       });
@@ -136,6 +143,7 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
       });
       timed(stats.ms.estimate, [&] {
         update_estimate();
+        judge_focus();
         judge_localization();
       });
     });
@@ -163,7 +171,9 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   if (std::string problem = s.select(scan); !problem.empty())
     return s.reject(UpdateOutcome::kRejectedScan, std::move(problem));
   if (s.has_odometry && s.jumped(odometry)) return s.reset_odometry(odometry);
-  if (s.has_odometry && !s.moved_enough(odometry)) return s.reject(UpdateOutcome::kNotMoved, "");
+  if (s.has_odometry && !s.moved_enough(odometry) && !s.still_update_due(scan))
+    return s.reject(UpdateOutcome::kNotMoved, "");
+  s.select_endpoints(scan);  // every reading's endpoint: only for a scan the filter runs on
 
   s.run_filter(odometry);
   s.stats.outcome = s.degenerate     ? UpdateOutcome::kUnexplainedScan

@@ -20,6 +20,7 @@
 #include "mote/engine/odometry_noise.hpp"
 #include "mote/engine/particles.hpp"
 #include "mote/engine/recovery.hpp"
+#include "mote/engine/relocalization.hpp"
 #include "mote/engine/scan_match.hpp"
 
 namespace mote {
@@ -41,7 +42,7 @@ struct Localizer::Impl {
   bool reject(UpdateOutcome outcome, std::string reason);
   // Selects the beams; returns why they cannot be weighed, or empty when they can.
   [[nodiscard]] std::string select(const LaserScan& scan);
-  void select_endpoints(const LaserScan& scan);  // readings and endpoints
+  void select_endpoints(const LaserScan& scan);  // readings and endpoints, once it will run
   [[nodiscard]] bool moved_enough(const Pose2& odometry) const;
   [[nodiscard]] bool jumped(const Pose2& odometry) const;
   bool reset_odometry(const Pose2& odometry);
@@ -58,7 +59,13 @@ struct Localizer::Impl {
   void count_lost_updates();
   void maybe_relocalize();
   void reset_relocalization();
+  // Whether a lost filter runs this scan although the robot has not moved (kStillScans).
+  [[nodiscard]] bool still_update_due(const LaserScan& scan);
   void update_estimate();
+  // Whether the estimate's clusters are focused (BlockedBeamFilter::focused), judged once per
+  // update: the state's tracking test, settled_once, the blocked-beam filter and tracking
+  // tempering all read this one verdict.
+  void judge_focus();
   // The best hypothesis matched to the map with every valid reading, and the state it gives.
   void judge_localization();
   // After an update: the residual of the estimate's motion against the odometry's, and the
@@ -100,11 +107,15 @@ struct Localizer::Impl {
   bool has_odometry = false;
   bool degenerate = false;  // the last scan explained no particle
   Pose2 last_odometry;
-  int updates_since_resample = 0;
-  int lost_updates = 0;         // consecutive updates in the lost state
-  int relocalize_after = 0;     // lost updates that call for the next re-localization
-  bool relocalize_due = false;  // re-localize before the next motion step
-  bool settled_once = false;    // one cluster has held the belief since initialization
+  std::uint64_t updates_since_resample = 0;  // 64 bits: no wrap on a live run of years
+  RelocalizationSchedule schedule;           // when a lost filter re-localizes
+  bool relocalize_due = false;               // re-localize before the next motion step
+  std::uint64_t still_scans = 0;             // scans in a row without motion while lost
+  // The verdict of judge_focus() on the clusters of estimate: made after each update's estimate
+  // (where the state reads it) and held for the next update's blocked-beam filter and tempering,
+  // which weigh against that same belief; made before the first update after initialization.
+  bool focused = false;
+  bool focus_judged = false;  // false between initialization and the first judge_focus()
 };
 
 }  // namespace mote

@@ -117,7 +117,6 @@ std::string Localizer::Impl::select(const LaserScan& scan) {
   select_beams(scan, selection, beams);
   stats.beams = beams.size();
   if (beams.empty()) return "no valid beam in the scan";
-  select_endpoints(scan);
   // What the ray cast would refuse (ray_setup.cpp) is refused here, before motion has moved the
   // particles: update() must not throw half-way.
   if (!std::ranges::all_of(beams.angle, [](float a) { return std::isfinite(a); })) {
@@ -159,6 +158,8 @@ bool Localizer::Impl::jumped(const Pose2& odometry) const {
 bool Localizer::Impl::reset_odometry(const Pose2& odometry) {
   const Pose2 delta = between(last_odometry, odometry);
   last_odometry = odometry;  // later steps count from here
+  // The next residual would pair odometry from the new origin with a fix from before the jump.
+  last_fix = {};
   return reject(UpdateOutcome::kRejectedOdometry,
                 "odometry jumped " + std::to_string(std::hypot(delta.x, delta.y)) +
                     " m since the last update (more than odom_jump_max_d): taken as an "
@@ -187,8 +188,7 @@ void Localizer::Impl::predict(const Pose2& odometry) {
 
 void Localizer::Impl::drop_blocked_beams() {
   if (!config.unmapped_obstacle_filter) return;
-  stats.blocked_beams =
-      blocked_filter(beams, std::as_const(store).view(), *field, estimate.clusters);
+  stats.blocked_beams = blocked_filter(beams, std::as_const(store).view(), *field, focused);
   stats.beams = beams.size();
   if (beams.empty()) {
     stats.reason =
@@ -217,8 +217,7 @@ void Localizer::Impl::weigh() {
 void Localizer::Impl::temper() {
   const ParticleView p = store.view();
   double tau = config.likelihood_tempering;
-  if (tau == 0.0 && config.tracking_tempering > 0.0 &&
-      BlockedBeamFilter::focused_on(beams, *field, estimate.clusters)) {
+  if (tau == 0.0 && config.tracking_tempering > 0.0 && focused) {
     tau = config.tracking_tempering;
   }
   if (tau == 0.0) {
@@ -253,7 +252,7 @@ void Localizer::Impl::maybe_resample() {
   // Never resample without motion (the first scan after initialization): it would only lose
   // diversity (Thrun section 4.3.4).
   if (!has_odometry) return;
-  if (++updates_since_resample < config.resample_interval) return;
+  if (++updates_since_resample < static_cast<std::uint64_t>(config.resample_interval)) return;
   if (!should_resample(stats.effective_sample_size, store.size(), config.resample_ess_fraction)) {
     return;
   }
@@ -337,6 +336,13 @@ void Localizer::Impl::update_estimate() {
       [](const PoseEstimate& a, const PoseEstimate& b) { return a.weight > b.weight; });
 }
 
+void Localizer::Impl::judge_focus() {
+  // The mean range of every reading with an endpoint: the scan the clusters were judged with
+  // (or, before the first update, the scan about to be weighed).
+  focused = BlockedBeamFilter::focused_on(readings, *field, estimate.clusters);
+  focus_judged = true;
+}
+
 void Localizer::Impl::judge_localization() {
   const PoseEstimate& best = estimate.best();
   const ScanMatch match = matcher->match(endpoints, best.mean);
@@ -350,8 +356,7 @@ void Localizer::Impl::judge_localization() {
     const FieldWalker walk(map, field->field);
     stats.see_through = see_through_share(beams, match.pose, walk, 2.0 * config.sigma_hit);
   }
-  stats.state = monitor.update(stats.see_through, stats.hit_share, best.weight);
-  settled_once = settled_once || best.weight >= monitor.config().settled_weight;
+  stats.state = monitor.update(stats.see_through, stats.hit_share, focused);
   stats.misfit = monitor.smoothed();
   // The reported estimate: the match where the belief supports it, else the hypothesis itself,
   // unrefined and without a covariance (not a fix the odometry-noise fit may use).

@@ -8,52 +8,85 @@
 
 #include "localizer_impl.hpp"
 #include "mote/engine/recovery.hpp"
+#include "mote/engine/relocalization.hpp"
+#include "mote/engine/resample.hpp"
 
 namespace mote {
 namespace {
 
-// Lost updates in a row before the first re-localization: the smoothed see-through share has
-// crossed the bound and stayed there for this many scans, so one odd scan does not trigger it.
-constexpr int kFirstAfter = 3;
-// Each re-localization that did not end the lost stretch doubles the wait before the next,
-// up to this many lost updates: a filter on the wrong map pays a global update every 96
-// updates at most, not every update.
-constexpr int kLongestWait = 96;
 // Share of the belief the particles already there keep: a hypothesis that still explains the
 // scans (a false alarm, a crowd) then outweighs every fresh particle at a look-alike place by
 // the ratio of the set sizes, and loses to the fresh particles only where the scans favour
 // them.
 constexpr double kKeptWeight = 0.5;
+// Scans in a row that did not move the robot after which a lost filter (or one whose scan no
+// longer fits its estimate) runs an update anyway: updates need motion (update_min_d,
+// update_min_a), and a lost robot standing still would otherwise never re-localize.
+constexpr std::uint64_t kStillScans = 10;
+// Keys the resampling that shrinks the kept set apart from the update's own resampling (same
+// seed and step): no filter runs 2^63 updates.
+constexpr std::uint64_t kShrinkStream = std::uint64_t{1} << 63U;
 
 }  // namespace
 
+bool RelocalizationSchedule::after_update(LocalizationState state, bool focused) noexcept {
+  const bool tracking = state == LocalizationState::kTracking;
+  tracked_ = next(tracked_, tracking);
+  focused_ = next(focused_, focused);
+  lost_ = next(lost_, state == LocalizationState::kLost);
+  settled_ = settled_ || tracking || focused_ >= kConvergedAfter;
+  if (tracked_ >= kTrackedToForgive) wait_ = kFirstAfter;
+  if (!settled_ || lost_ < wait_) return false;
+  lost_ = 0;
+  wait_ = std::min(2 * wait_, kLongestWait);
+  return true;
+}
+
 void Localizer::Impl::reset_relocalization() {
-  lost_updates = 0;
-  relocalize_after = kFirstAfter;
+  schedule.reset();
   relocalize_due = false;
-  settled_once = false;
+  still_scans = 0;
 }
 
 void Localizer::Impl::count_lost_updates() {
-  if (stats.state != LocalizationState::kLost) {
-    lost_updates = 0;
-    if (stats.state == LocalizationState::kTracking) relocalize_after = kFirstAfter;
-    return;
+  still_scans = 0;
+  const bool due = schedule.after_update(stats.state, focused);
+  relocalize_due = due && config.relocalize_when_lost;
+}
+
+bool Localizer::Impl::still_update_due(const LaserScan& scan) {
+  // Only where a re-localization could follow: a global search that has not settled runs on
+  // motion alone, as updates without it would weigh the same scan again and again.
+  if (!config.relocalize_when_lost || !schedule.settled()) {
+    still_scans = 0;
+    return false;
   }
-  ++lost_updates;
-  // Before the belief has settled once (a global start converging, a wrong map) it is global
-  // already: a global set would only restart the search.
-  if (!config.relocalize_when_lost || !settled_once || lost_updates < relocalize_after) return;
-  relocalize_due = true;
-  lost_updates = 0;
-  relocalize_after = std::min(2 * relocalize_after, kLongestWait);
+  if (++still_scans < kStillScans) return false;
+  still_scans = 0;
+  if (monitor.state() == LocalizationState::kLost) return true;
+  // A robot carried off while standing still: no update has run since, so the state cannot
+  // know. One look at the scan from the last refined pose (no refinement) tells whether it
+  // still fits there.
+  select_endpoints(scan);
+  return 1.0 - matcher->hit_share(endpoints, estimate.refined.pose) > config.lost_misfit;
 }
 
 void Localizer::Impl::maybe_relocalize() {
   if (!relocalize_due) return;
   relocalize_due = false;
+  // The kept set and the global set share max_particles, the store's reserved capacity: a
+  // re-localization neither reallocates mid-update nor exceeds the bound. When both do not fit,
+  // the kept set is resampled down to what the global set leaves, but keeps at least half.
+  const auto max_n = static_cast<std::size_t>(config.max_particles);
+  std::size_t fresh = std::min(global_count(), max_n);
+  std::size_t kept = store.size();
+  if (kept + fresh > max_n) {
+    kept = std::min(kept, std::max(max_n - fresh, (max_n + 1) / 2));
+    fresh = max_n - kept;
+    resample_systematic(store, kept, config.seed, step | kShrinkStream, config.grain);
+  }
   const std::size_t before = store.size();
-  append_uniform(store, global_count(), kKeptWeight, map, config.seed, step, config.grain);
+  append_uniform(store, fresh, kKeptWeight, map, config.seed, step, config.grain);
   stats.relocalized = store.size() - before;
   monitor.reset();
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace mote {
 
@@ -23,7 +24,8 @@ double see_through_share(const BeamSet& beams, const Pose2& pose, const FieldWal
     // error within sigma_hit) would otherwise see every ray through that wall.
     if (walk.runs_into_wall(origin, u, margin * k, (r - margin) * k)) ++through;
   }
-  return endpoints > 0 ? static_cast<double>(through) / static_cast<double>(endpoints) : 0.0;
+  return endpoints > 0 ? static_cast<double>(through) / static_cast<double>(endpoints)
+                       : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace mote

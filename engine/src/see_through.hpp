@@ -13,7 +13,8 @@ namespace mote {
 /// random reading (Thrun et al., eq. 6.11), the far tail of the hit Gaussian (eq. 6.4) or an
 /// error of the map (glass, an open door drawn closed) can do that; at a wrong pose a
 /// reading crosses a wall whenever the belief puts one between the robot and the endpoint.
-/// 0 when no beam has an endpoint.
+/// NaN when no beam has an endpoint (every weighed beam a no-return): nothing to judge by, and
+/// the localization state then stays as it was.
 [[nodiscard]] double see_through_share(const BeamSet& beams, const Pose2& pose,
                                        const FieldWalker& walk, double margin);
 

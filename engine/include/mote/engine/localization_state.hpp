@@ -18,8 +18,9 @@
 /// a few updates, since single scans vary (a crowd, glass, a tight turn).
 ///
 /// - lost: the smoothed misfit is above lost_misfit (the scans do not fit where the belief is);
-/// - tracking: it is not, and the belief has settled (its heaviest cluster holds most of the
-///   weight);
+/// - tracking: it is not, and the belief is focused: clusters tight enough that their spread
+///   moves an endpoint by less than the hit band hold most of the weight (a fresh global set is
+///   one connected cluster holding all of it, but metres wide);
 /// - uncertain: otherwise: the scans fit, but the belief has several hypotheses or is spread
 ///   out (global localization before it converges).
 ///
@@ -49,8 +50,6 @@ struct LocalizationStateConfig {
   double smoothing = 0.3;
   /// The smoothed misfit above which the filter is lost (see the file comment).
   double lost_misfit = 0.6;
-  /// Weight the heaviest cluster must hold for the belief to count as settled.
-  double settled_weight = 0.9;
 };
 
 /// The smoothed misfit and the state it gives.
@@ -58,11 +57,18 @@ class LocalizationMonitor {
  public:
   explicit LocalizationMonitor(LocalizationStateConfig config = {}) : config_(config) {}
 
-  /// One update's see-through and hit shares (at the refined best pose) and the heaviest
-  /// cluster's weight; a NaN share (no reading with an endpoint) leaves the state as it was.
-  LocalizationState update(double see_through, double hit_share, double best_weight) noexcept;
-  /// Forgets the average (after initialization or re-localization).
-  void reset() noexcept { started_ = false; }
+  /// One update's see-through and hit shares (at the refined best pose) and whether the belief
+  /// is focused: tight hypotheses hold most of its weight (the Localizer's one rule, the
+  /// blocked-beam filter's: weight and spread, so a fresh global set, one connected cluster
+  /// metres wide, is not); a NaN share (no reading with an endpoint) leaves the state as it was.
+  LocalizationState update(double see_through, double hit_share, bool focused) noexcept;
+  /// Forgets the average and the state (after initialization or re-localization): the next
+  /// scan starts both afresh, and until then the state is uncertain.
+  void reset() noexcept {
+    started_ = false;
+    smoothed_ = 0.0;
+    state_ = LocalizationState::kUncertain;
+  }
 
   [[nodiscard]] double smoothed() const noexcept { return smoothed_; }
   [[nodiscard]] LocalizationState state() const noexcept { return state_; }
