@@ -76,12 +76,14 @@ void Localizer::Impl::maybe_relocalize() {
   relocalize_due = false;
   // The kept set and the global set share max_particles, the store's reserved capacity: a
   // re-localization neither reallocates mid-update nor exceeds the bound. When both do not fit,
-  // the kept set is resampled down to what the global set leaves, but keeps at least half.
+  // the kept set is resampled down to what the global set leaves, but to no fewer than an
+  // eighth of max_particles: it holds a hypothesis or a few (the weight it keeps, kKeptWeight,
+  // does not depend on its count), where the global set must cover the whole map.
   const auto max_n = static_cast<std::size_t>(config.max_particles);
   std::size_t fresh = std::min(global_count(), max_n);
   std::size_t kept = store.size();
   if (kept + fresh > max_n) {
-    kept = std::min(kept, std::max(max_n - fresh, (max_n + 1) / 2));
+    kept = std::min(kept, std::max(max_n - fresh, (max_n + 7) / 8));
     fresh = max_n - kept;
     resample_systematic(store, kept, config.seed, step | kShrinkStream, config.grain);
   }

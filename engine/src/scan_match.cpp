@@ -12,6 +12,8 @@ namespace {
 // Levenberg-Marquardt damping: start, growth on a rejected step, shrink on an accepted one.
 constexpr double kInitialDamping = 1e-4;
 constexpr double kDampingGrowth = 10.0;
+// Net rejected steps (each damps the next tenfold, each accepted one undoes one) after which
+// the search stops: the eighth rejection ends it.
 constexpr int kMaxRejections = 8;
 
 // Endpoint e (robot frame) at grid-frame pose p, and its derivative by theta.
@@ -101,6 +103,43 @@ double ScanMatcher::hit_share(std::span<const Point2> ends, const Pose2& pose) c
   return static_cast<double>(hits) / static_cast<double>(ends.size());
 }
 
+double ScanMatcher::correlation_factor(std::span<const Point2> ends, const Pose2& grid_pose) const {
+  // Robust residuals sqrt(w) r in scan order: neighbouring readings see the same stretch of
+  // wall, drawn a little off or seen through a map's error together, so their residuals are
+  // correlated, and n of them carry the information of about n (1 - rho) / (1 + rho)
+  // independent ones (an AR(1) model with lag-1 autocorrelation rho).
+  // One pass: the centred sums follow from the plain ones and the first and last residuals.
+  const double c = config_.scale;
+  const double cs = std::cos(grid_pose.theta);
+  const double sn = std::sin(grid_pose.theta);
+  const std::size_t n = ends.size();
+  if (n < 3) return 1.0;
+  double sum = 0.0;
+  double squares = 0.0;
+  double products = 0.0;  // sum of a_i a_(i+1)
+  double first = 0.0;
+  double previous = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Placed p = place(grid_pose, ends[i], cs, sn);
+    const double d = sample(p.x, p.y).distance;
+    const double q = d / c;
+    const double a = d / std::sqrt(1.0 + q * q);
+    if (i == 0) first = a;
+    if (i > 0) products += previous * a;
+    sum += a;
+    squares += a * a;
+    previous = a;
+  }
+  const double count = static_cast<double>(n);
+  const double mean = sum / count;
+  const double var = squares - count * mean * mean;
+  const double lag = products - mean * (2.0 * sum - first - previous) + (count - 1.0) * mean * mean;
+  if (!(var > 0.0)) return 1.0;
+  const double rho = std::clamp(lag / var, 0.0, 1.0);
+  const double factor = rho < 1.0 ? (1.0 + rho) / (1.0 - rho) : count;
+  return std::min(factor, count);
+}
+
 ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start) const {
   ScanMatch out;
   out.pose = start;
@@ -108,27 +147,35 @@ ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start) c
   if (ends.empty() || !is_finite(start)) return out;
   Pose2 pose = between(field_.origin(), start);  // grid frame
   Normal at = normal_equations(ends, pose, true);
-  double damping = kInitialDamping;
+  int level = 0;  // damping = kInitialDamping * kDampingGrowth^level
   for (; out.iterations < config_.max_iterations; ++out.iterations) {
+    const double damping = kInitialDamping * std::pow(kDampingGrowth, level);
     Eigen::Matrix3d a = at.h;
     a.diagonal() *= 1.0 + damping;
     a.diagonal().array() += 1e-12;
     const Eigen::Vector3d step = a.ldlt().solve(-at.g);
     if (!step.allFinite()) break;
+    const bool short_step = std::hypot(step.x(), step.y()) + std::abs(step.z()) < config_.min_step;
     const Pose2 next{pose.x + step.x(), pose.y + step.y(), wrap_angle(pose.theta + step.z())};
     const Normal there = normal_equations(ends, next, true);
     if (there.cost > at.cost) {  // rejected: damp harder, as Levenberg-Marquardt
-      damping *= kDampingGrowth;
-      if (damping > std::pow(kDampingGrowth, kMaxRejections) * kInitialDamping) break;
+      // No step down even below min_step: the pose is a minimum at the search's resolution.
+      if (short_step || ++level == kMaxRejections) {
+        out.converged = short_step;
+        break;
+      }
       continue;
     }
-    const bool undamped = damping <= kInitialDamping;
-    damping = std::max(damping / kDampingGrowth, kInitialDamping);
+    const bool undamped = level == 0;
+    level = std::max(level - 1, 0);
     pose = next;
     at = there;
     // A short step is convergence only for Gauss-Newton's own step: a heavily damped one is
     // short because the damping made it so.
-    if (undamped && std::hypot(step.x(), step.y()) + std::abs(step.z()) < config_.min_step) break;
+    if (undamped && short_step) {
+      out.converged = true;
+      break;
+    }
   }
   out.pose = compose(field_.origin(), pose);
   out.hit_share = hit_share(ends, out.pose);
@@ -140,7 +187,7 @@ ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start) c
   if (at.weights > 0.0 && trace > 0.0) {
     Eigen::Matrix3d h = at.h;
     h.diagonal().array() += 1e-6 * trace;
-    const double variance = at.weighted_squares / at.weights;
+    const double variance = at.weighted_squares / at.weights * correlation_factor(ends, pose);
     const Eigen::Matrix3d cov = variance * h.ldlt().solve(Eigen::Matrix3d::Identity());
     const double cy = std::cos(field_.origin().theta);
     const double sy = std::sin(field_.origin().theta);

@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "mote/engine/localizer.hpp"
@@ -129,27 +130,44 @@ TEST_F(StateOnIntel, FalseAlarmsKeepTheHypothesisThatExplainsTheScans) {
 }
 
 // Re-localization draws its global set from counter-based streams like everything else: one
-// thread and two give the same particles, bit for bit.
-TEST_F(StateOnIntel, RelocalizationIsBitIdenticalForAnyThreadCount) {
-  const auto run = [&](int threads) {
+// thread and two, and two grains, give the same particles, refined poses, states and fitted
+// odometry noise after every update, bit for bit.
+TEST_F(StateOnIntel, RelocalizationIsBitIdenticalForAnyThreadCountAndGrain) {
+  const auto run = [&](int threads, std::size_t grain) {
     LocalizerConfig c = config();
     c.lost_misfit = 1e-6;
     c.threads = threads;
+    c.grain = grain;
     Localizer filter(*map_, c);
     filter.initialize(kIntelStart, start_covariance());
     test::Drive drive(*map_, kIntelStart, 7);
     filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
-    for (int k = 0; k < 12; ++k) drive.feed(filter);
+    std::vector<double> trace;  // per update: refined pose, state, alphas, re-localized
+    for (int k = 0; k < 12; ++k) {
+      drive.feed(filter);
+      const UpdateStats& u = filter.last_update();
+      const Pose2& r = filter.estimate().refined.pose;
+      trace.insert(trace.end(), {r.x, r.y, r.theta, static_cast<double>(u.state), u.alphas.alpha1,
+                                 u.alphas.alpha2, u.alphas.alpha3, u.alphas.alpha4,
+                                 static_cast<double>(u.relocalized)});
+    }
     const ConstParticleView p = filter.particles();
-    std::vector<float> all;
     for (const float* column : {p.x, p.y, p.theta, p.logw})
-      all.insert(all.end(), column, column + p.size());
-    return all;
+      trace.insert(trace.end(), column, column + p.size());
+    return trace;
   };
-  const std::vector<float> one = run(1);
-  const std::vector<float> two = run(2);
-  ASSERT_EQ(one.size(), two.size());
-  EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)), 0);
+  const std::vector<double> one = run(1, 4096);
+  double relocalized = 0.0;
+  for (std::size_t k = 0; k < 12; ++k) relocalized += one[9 * k + 8];
+  ASSERT_GT(relocalized, 0.0) << "no re-localization to compare";
+  for (const auto& [threads, grain] :
+       {std::pair{2, std::size_t{4096}}, std::pair{2, std::size_t{256}},
+        std::pair{1, std::size_t{256}}}) {
+    const std::vector<double> other = run(threads, grain);
+    ASSERT_EQ(one.size(), other.size()) << threads << " threads, grain " << grain;
+    EXPECT_EQ(std::memcmp(one.data(), other.data(), one.size() * sizeof(double)), 0)
+        << threads << " threads, grain " << grain;
+  }
 }
 
 // Every initialize*() starts the estimate afresh: the refined pose is the new belief's best

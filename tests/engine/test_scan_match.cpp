@@ -70,6 +70,23 @@ TEST_F(ScanMatchOnIntel, FindsThePoseTheScanWasTakenFrom) {
   EXPECT_LT(errors[errors.size() / 2], 0.03);  // the start was 0.19 m off
 }
 
+// Convergence is reported: a search stopped by its iteration cap far from the minimum is not
+// a fix (the Localizer neither reports it nor feeds it to the odometry-noise fit).
+TEST_F(ScanMatchOnIntel, SaysWhetherItConverged) {
+  test::ScanSimulator sim(*map_, 3, {.unknown_blocks = false});
+  const Pose2 truth{-2.0, 1.5, 0.4};
+  const std::vector<Point2> ends = endpoints(sim.scan_at(truth, 0.01));
+  const Pose2 start{truth.x + 0.15, truth.y - 0.12, truth.theta + 4 * kDeg};
+  const ScanMatch full = ScanMatcher(*field_, {.scale = 0.2}).match(ends, start);
+  EXPECT_TRUE(full.converged);
+  EXPECT_LT(full.iterations, 20);
+  const ScanMatch capped =
+      ScanMatcher(*field_, {.scale = 0.2, .max_iterations = 1}).match(ends, start);
+  EXPECT_FALSE(capped.converged);
+  EXPECT_EQ(capped.iterations, 1);
+  EXPECT_FALSE(ScanMatcher(*field_, {}).match({}, start).converged);
+}
+
 TEST_F(ScanMatchOnIntel, ReadingsOfUnmappedThingsPullLittle) {
   test::ScanSimulator sim(*map_, 5, {.unknown_blocks = false});
   const ScanMatcher matcher(*field_, {.scale = 0.2});

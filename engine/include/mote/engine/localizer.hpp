@@ -116,6 +116,13 @@ struct UpdateStats {
   /// see_through + (1 - hit_share) averaged over the last updates: what the state is decided
   /// from (localization_state.hpp).
   double misfit = 0.0;
+  /// Whether the refined estimate is the match: it converged and the belief supported it
+  /// (LocalizationEstimate::refined); false when the gate or convergence refused it, or the
+  /// scan had no endpoint.
+  bool refined_matched = false;
+  /// The match converged but lay outside the chi-square gate of the belief (0.999: nominally
+  /// one update in a thousand while the belief and the match describe the same pose).
+  bool refined_gated = false;
   double log_w_slow = 0.0;  ///< augmented MCL's averages of the mean likelihood, log domain
   double log_w_fast = 0.0;
   PhaseTimes ms;

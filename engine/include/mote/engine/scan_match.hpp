@@ -37,14 +37,22 @@ struct ScanMatchConfig {
 struct ScanMatch {
   Pose2 pose;  ///< the refined pose (map frame)
   /// Covariance of the refined pose (x m, y m, theta rad; map frame): the robust residual
-  /// variance times the inverse Gauss-Newton Hessian (the Laplace approximation), treating the
-  /// endpoints as independent; a direction the readings do not constrain gets a variance a
-  /// million times the best-constrained one's. Zero when no endpoint lies near a wall.
+  /// variance times the inverse Gauss-Newton Hessian (the Laplace approximation), inflated by
+  /// n over the effective number of independent readings (the residuals' lag-1
+  /// autocorrelation along the scan, an AR(1) model): hundreds of neighbouring readings that
+  /// see the same wall error are not hundreds of independent ones, and taken as such they made
+  /// the belief's chi-square gate refuse 1-2.6 % of tracking updates instead of 0.1 %. A
+  /// direction the readings do not constrain gets a variance a million times the
+  /// best-constrained one's. Zero when no endpoint lies near a wall.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   std::size_t endpoints = 0;  ///< endpoints matched
   /// Share of the endpoints within `scale` of a mapped obstacle's surface at the refined pose.
   double hit_share = 0.0;
   int iterations = 0;  ///< Gauss-Newton steps taken
+  /// Whether the search converged: an undamped step, or the shortest damped one, fell below
+  /// min_step. False when it stopped at max_iterations or on a non-finite step (and when there
+  /// was nothing to match): the pose is then where the search stood, not a minimum.
+  bool converged = false;
 };
 
 /// Matches scans against one distance field (which it references: keep it alive).
@@ -79,6 +87,11 @@ class ScanMatcher {
   };
   [[nodiscard]] Normal normal_equations(std::span<const Point2> ends, const Pose2& grid_pose,
                                         bool with_jacobian) const;
+  // n over the effective number of independent readings at a grid-frame pose: (1 + rho) /
+  // (1 - rho) for the lag-1 autocorrelation rho >= 0 of the robust residuals in scan order,
+  // within [1, n].
+  [[nodiscard]] double correlation_factor(std::span<const Point2> ends,
+                                          const Pose2& grid_pose) const;
 
   const SignedDistanceField& field_;
   ScanMatchConfig config_;
