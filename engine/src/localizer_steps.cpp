@@ -284,9 +284,10 @@ bool fixed(const ScanMatch& m) {
 // 0.999 quantile of 3 F(3, 5), a multivariate t with 5 degrees of freedom, not of chi-square
 // with 3 (16.27). The cloud's covariance is an estimate from a few hundred resampled particles
 // and its mean lags the motion, so the distances have a heavier tail than a Gaussian's: while
-// tracking, the chi-square gate refused 0.7-8.8 % of the updates on the shared logs (issue 51)
-// where its nominal share is 0.1 %; the largest distance while tracking on any of them is 58,
-// and a match that a crowd carried half a metre off the belief is in the thousands.
+// tracking, the chi-square gate refused 0.5-1.6 % of the updates on the logs with reference
+// poses and a quarter or more on Wean and DIS, whose maps are older than their logs (issue 51),
+// where its nominal share is 0.1 %; the largest distance on any shared log is 58,
+// and a match a crowd carried half a metre off a belief a few centimetres wide is in the hundreds.
 constexpr double kBeliefGate = 99.6;
 
 // Whether the belief supports the match: the squared Mahalanobis distance between the match and
