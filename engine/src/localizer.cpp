@@ -163,8 +163,11 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   if (std::string problem = s.select(scan); !problem.empty())
     return s.reject(UpdateOutcome::kRejectedScan, std::move(problem));
   if (s.has_odometry && s.jumped(odometry)) return s.reset_odometry(odometry);
-  if (s.has_odometry && !s.moved_enough(odometry)) return s.reject(UpdateOutcome::kNotMoved, "");
+  if (s.has_odometry && !s.force_update && !s.moved_enough(odometry)) {
+    return s.reject(UpdateOutcome::kNotMoved, "");
+  }
 
+  s.force_update = false;
   s.run_filter(odometry);
   s.stats.outcome = s.degenerate     ? UpdateOutcome::kUnexplainedScan
                     : s.has_odometry ? UpdateOutcome::kUpdated
@@ -179,6 +182,8 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   s.stats.ms.total = ms_since(start);
   return true;
 }
+
+void Localizer::force_next_update() noexcept { impl_->force_update = true; }
 
 GlobalSetSize Localizer::global_set() const noexcept {
   const Impl& s = *impl_;

@@ -104,6 +104,7 @@ struct Localizer::Impl {
   int lost_updates = 0;         // consecutive updates in the lost state
   int relocalize_after = 0;     // lost updates that call for the next re-localization
   bool relocalize_due = false;  // re-localize before the next motion step
+  bool force_update = false;    // the next update runs without motion (force_next_update)
   bool settled_once = false;    // one cluster has held the belief since initialization
 };
 

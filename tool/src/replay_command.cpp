@@ -67,21 +67,6 @@ constexpr std::string_view kAbout =
     "and DIR/map.png. Exit status 0 when the run ends localized, 3 when it ends lost (the scans\n"
     "do not fit the map: a warning says so), 1 on an error, 2 on a usage error.";
 
-Pose2 parse_pose(const ParsedArgs& args) {
-  const std::string text = *args.text("init-pose");
-  std::array<double, 3> v{};
-  std::size_t start = 0;
-  for (std::size_t k = 0; k < 3; ++k) {
-    const std::size_t comma = k < 2 ? text.find(',', start) : text.size();
-    if (comma == std::string::npos) throw args.error("init-pose", "expects X,Y,THETA");
-    const auto x = parse_real(std::string_view(text).substr(start, comma - start));
-    if (!x) throw args.error("init-pose", "expects three numbers X,Y,THETA, got '" + text + "'");
-    v[k] = *x;
-    start = comma + 1;
-  }
-  return {v[0], v[1], wrap_angle(v[2])};
-}
-
 int to_int(std::int64_t v) { return static_cast<int>(v); }
 
 void apply_counts(const ParsedArgs& args, LocalizerConfig& c) {
@@ -112,7 +97,7 @@ void apply_init(const ParsedArgs& args, replay::ReplayOptions& o) {
     throw args.error("init", "and --init-pose exclude each other");
   if (args.has("init-pose")) {
     o.init = replay::InitMode::kPose;
-    o.init_pose = parse_pose(args);
+    o.init_pose = *pose_flag(args, "init-pose");
   } else if (const auto mode = args.text("init")) {
     if (*mode == "global") {
       o.init = replay::InitMode::kGlobal;
