@@ -87,8 +87,8 @@ void ScanSync::drop_stale() {
     ++dropped_.no_odometry;
     pending_.pop_front();
   }
-  const double keep_from = pending_.empty() ? (odom_.empty() ? 0.0 : odom_.back().stamp)
-                                            : pending_.front().scan.stamp;
+  const double keep_from =
+      pending_.empty() ? (odom_.empty() ? 0.0 : odom_.back().stamp) : pending_.front().scan.stamp;
   while (odom_.size() > 2 && odom_[1].stamp <= keep_from) odom_.pop_front();
 }
 

@@ -8,6 +8,9 @@
 #include "mote/ros/ros_names.hpp"
 #include "raw_cdr_type.hpp"
 
+#include <dds/ddsi/ddsi_serdata.h>
+#include <dds/ddsi/ddsi_sertype.h>
+
 namespace mote::ros::detail {
 namespace {
 
@@ -21,10 +24,10 @@ struct QosDeleter {
 std::unique_ptr<dds_qos_t, QosDeleter> make_qos(TopicQos qos) {
   std::unique_ptr<dds_qos_t, QosDeleter> q(dds_create_qos());
   dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, qos.depth);
-  dds_qset_reliability(q.get(), qos.reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT,
-                       DDS_SECS(1));
-  dds_qset_durability(q.get(),
-                      qos.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
+  dds_qset_reliability(
+      q.get(), qos.reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT, DDS_SECS(1));
+  dds_qset_durability(
+      q.get(), qos.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
   // A transient-local writer keeps what a late reader gets: the same depth.
   dds_qset_durability_service(q.get(), 0, DDS_HISTORY_KEEP_LAST, qos.depth, DDS_LENGTH_UNLIMITED,
                               DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
@@ -33,14 +36,15 @@ std::unique_ptr<dds_qos_t, QosDeleter> make_qos(TopicQos qos) {
   return q;
 }
 
-dds_entity_t make_topic(const Participant& p, std::string_view ros_topic,
-                        std::string_view ros_type, const ddsi_sertype** type_out) {
+dds_entity_t make_topic(const Participant& p, std::string_view ros_topic, std::string_view ros_type,
+                        const ddsi_sertype** type_out) {
   const std::string name = dds_topic_name(ros_topic);
   ddsi_sertype* type = make_raw_cdr_type(dds_type_name(ros_type));
-  const dds_entity_t topic = dds_create_topic_sertype(p.handle(), name.c_str(), &type, nullptr,
-                                                      nullptr, nullptr);
+  const dds_entity_t topic =
+      dds_create_topic_sertype(p.handle(), name.c_str(), &type, nullptr, nullptr, nullptr);
   if (topic < 0) ddsi_sertype_unref(type);
-  check_dds(topic, "creating topic " + std::string(ros_topic) + " of type " + std::string(ros_type));
+  check_dds(topic,
+            "creating topic " + std::string(ros_topic) + " of type " + std::string(ros_type));
   if (type_out != nullptr) *type_out = type;
   return topic;
 }
@@ -53,10 +57,10 @@ dds_entity_t check_dds(dds_entity_t result, const std::string& what) {
 }
 
 Participant::Participant(int domain_id)
-    : handle_(check_dds(dds_create_participant(static_cast<dds_domainid_t>(domain_id), nullptr,
-                                               nullptr),
-                        "joining domain " + std::to_string(domain_id) +
-                            " (check CYCLONEDDS_URI and ROS_DOMAIN_ID)")) {}
+    : handle_(check_dds(
+          dds_create_participant(static_cast<dds_domainid_t>(domain_id), nullptr, nullptr),
+          "joining domain " + std::to_string(domain_id) +
+              " (check CYCLONEDDS_URI and ROS_DOMAIN_ID)")) {}
 
 Participant::~Participant() { dds_delete(handle_); }
 
@@ -100,8 +104,8 @@ std::vector<std::string> RawReader::take() const {
   std::array<ddsi_serdata*, kBatch> samples{};
   std::array<dds_sample_info_t, kBatch> infos{};
   for (;;) {
-    const dds_return_t n = dds_takecdr(reader_, samples.data(), kBatch, infos.data(),
-                                       DDS_ANY_STATE);
+    const dds_return_t n =
+        dds_takecdr(reader_, samples.data(), kBatch, infos.data(), DDS_ANY_STATE);
     check_dds(n, "taking from " + topic_);
     for (dds_return_t k = 0; k < n; ++k) {
       if (infos[static_cast<std::size_t>(k)].valid_data) {

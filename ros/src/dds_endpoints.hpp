@@ -27,7 +27,8 @@ inline constexpr TopicQos kSensorQos{.reliable = false, .transient_local = false
 inline constexpr TopicQos kMapQos{.reliable = true, .transient_local = true, .depth = 1};
 inline constexpr TopicQos kInitialPoseQos{.reliable = true, .transient_local = false, .depth = 1};
 inline constexpr TopicQos kAmclPoseQos{.reliable = true, .transient_local = true, .depth = 1};
-inline constexpr TopicQos kParticleCloudQos{.reliable = false, .transient_local = false, .depth = 5};
+inline constexpr TopicQos kParticleCloudQos{
+    .reliable = false, .transient_local = false, .depth = 5};
 inline constexpr TopicQos kTfQos{.reliable = true, .transient_local = false, .depth = 100};
 inline constexpr TopicQos kTfStaticQos{.reliable = true, .transient_local = true, .depth = 100};
 /// rclcpp's default (SystemDefaultsQoS / KeepLast 10, reliable, volatile).
@@ -54,8 +55,8 @@ class Participant {
 /// Writes serialized messages of one type to one ROS 2 topic.
 class RawWriter {
  public:
-  RawWriter(const Participant& participant, std::string_view ros_topic,
-            std::string_view ros_type, TopicQos qos);
+  RawWriter(const Participant& participant, std::string_view ros_topic, std::string_view ros_type,
+            TopicQos qos);
   ~RawWriter();
   RawWriter(const RawWriter&) = delete;
   RawWriter& operator=(const RawWriter&) = delete;
@@ -74,8 +75,8 @@ class RawWriter {
 /// Reads serialized messages of one type from one ROS 2 topic.
 class RawReader {
  public:
-  RawReader(const Participant& participant, std::string_view ros_topic,
-            std::string_view ros_type, TopicQos qos);
+  RawReader(const Participant& participant, std::string_view ros_topic, std::string_view ros_type,
+            TopicQos qos);
   ~RawReader();
   RawReader(const RawReader&) = delete;
   RawReader& operator=(const RawReader&) = delete;

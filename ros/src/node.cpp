@@ -1,7 +1,9 @@
 #include "mote/ros/node.hpp"
 
 #include <algorithm>
+#include <deque>
 #include <iostream>
+#include <tuple>
 
 #include "mote/core/error.hpp"
 #include "mote/maps/map_loader.hpp"
@@ -20,12 +22,23 @@ std::function<void(const std::string&)> sink_of(const NodeOptions& o) {
 void check_options(const NodeOptions& o) {
   if (o.scan_topics.empty()) throw ConfigError("scan_topic: at least one scan topic is needed");
   if (!(o.transform_tolerance >= 0.0) || !(o.scan_wait > 0.0) || !(o.save_pose_rate > 0.0)) {
-    throw ConfigError(
-        "transform_tolerance must be >= 0 s, the scan wait and save_pose_rate > 0");
+    throw ConfigError("transform_tolerance must be >= 0 s, the scan wait and save_pose_rate > 0");
   }
   if (o.initial_pose && !is_finite(*o.initial_pose)) {
     throw ConfigError("initial_pose: x, y and yaw must be finite numbers");
   }
+}
+
+// p50 and p99 of `samples`, (0, 0) for none.
+std::pair<double, double> percentiles(const std::deque<double>& samples) {
+  if (samples.empty()) return {0.0, 0.0};
+  std::vector<double> v(samples.begin(), samples.end());
+  const auto at = [&v](double q) {
+    const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + k, v.end());
+    return v[static_cast<std::size_t>(k)];
+  };
+  return {at(0.5), at(0.99)};
 }
 
 }  // namespace
@@ -35,11 +48,10 @@ Node::Impl::Impl(NodeOptions opts)
       warnings(sink_of(options), kWarningInterval),
       participant(options.domain_id),
       tf_reader(participant, "/tf", "tf2_msgs/msg/TFMessage", detail::kTfQos),
-      tf_static_reader(participant, "/tf_static", "tf2_msgs/msg/TFMessage",
-                       detail::kTfStaticQos),
+      tf_static_reader(participant, "/tf_static", "tf2_msgs/msg/TFMessage", detail::kTfStaticQos),
       map_reader(participant, options.map_topic, "nav_msgs/msg/OccupancyGrid", detail::kMapQos),
-      initial_pose_reader(participant, "/initialpose", "geometry_msgs/msg/PoseWithCovarianceStamped",
-                          detail::kInitialPoseQos),
+      initial_pose_reader(participant, "/initialpose",
+                          "geometry_msgs/msg/PoseWithCovarianceStamped", detail::kInitialPoseQos),
       tf_writer(participant, "/tf", "tf2_msgs/msg/TFMessage", detail::kTfQos),
       pose_writer(participant, "/amcl_pose", "geometry_msgs/msg/PoseWithCovarianceStamped",
                   detail::kAmclPoseQos),
@@ -77,12 +89,13 @@ Node::Impl::~Impl() {
 
 Node::Node(NodeOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {
   Impl& s = *impl_;
-  s.warnings.notice("mote node: domain " + std::to_string(s.options.domain_id) + ", scans on " +
-                    s.options.scan_topics.front() +
-                    (s.options.scan_topics.size() > 1 ? " and others" : "") + ", map on " +
-                    (s.options.map_file.empty() ? s.options.map_topic : s.options.map_file.string()) +
-                    ", frames " + s.options.global_frame + " -> " + s.options.odom_frame + " -> " +
-                    (s.options.base_frame.empty() ? "(odom's child)" : s.options.base_frame));
+  s.warnings.notice(
+      "mote node: domain " + std::to_string(s.options.domain_id) + ", scans on " +
+      s.options.scan_topics.front() + (s.options.scan_topics.size() > 1 ? " and others" : "") +
+      ", map on " +
+      (s.options.map_file.empty() ? s.options.map_topic : s.options.map_file.string()) +
+      ", frames " + s.options.global_frame + " -> " + s.options.odom_frame + " -> " +
+      (s.options.base_frame.empty() ? "(odom's child)" : s.options.base_frame));
   s.receiver = std::thread([&s] { s.receive_loop(); });
   s.filter_thread = std::thread([&s] { s.filter_loop(); });
 }
@@ -123,16 +136,8 @@ NodeCounters Node::counters() const {
   if (!impl_) return final_counters_;
   const std::lock_guard lock(impl_->mutex);
   NodeCounters c = impl_->counts;
-  std::vector<double> ms(impl_->latencies_ms.begin(), impl_->latencies_ms.end());
-  if (!ms.empty()) {
-    const auto at = [&](double q) {
-      const auto k = static_cast<std::size_t>(q * static_cast<double>(ms.size() - 1));
-      std::nth_element(ms.begin(), ms.begin() + static_cast<std::ptrdiff_t>(k), ms.end());
-      return ms[k];
-    };
-    c.latency_p50_ms = at(0.5);
-    c.latency_p99_ms = at(0.99);
-  }
+  std::tie(c.latency_p50_ms, c.latency_p99_ms) = percentiles(impl_->latencies_ms);
+  std::tie(c.processing_p50_ms, c.processing_p99_ms) = percentiles(impl_->processing_ms);
   return c;
 }
 

@@ -2,6 +2,7 @@
 // on the newest scan and publishes what it found.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "node_impl.hpp"
 #include "pose_file.hpp"
@@ -83,9 +84,8 @@ void Node::Impl::swap_in(PreparedFilter prepared) {
 void Node::Impl::start_at(const StartPose& start) {
   filter->initialize(start.pose, start.covariance);
   have_map_to_odom = false;
-  warnings.notice("initialized at " + start.source + ": x " + std::to_string(start.pose.x) +
-                  " y " + std::to_string(start.pose.y) + " yaw " +
-                  std::to_string(start.pose.theta));
+  warnings.notice("initialized at " + start.source + ": x " + std::to_string(start.pose.x) + " y " +
+                  std::to_string(start.pose.y) + " yaw " + std::to_string(start.pose.theta));
 }
 
 void Node::Impl::process(const ReadyScan& scan) {
@@ -114,6 +114,12 @@ void Node::Impl::process(const ReadyScan& scan) {
     maybe_save_pose(f.stamp);
   }
   if (have_map_to_odom) publish_transform(f.stamp);
+  if (ran && u.state != reported_state) {
+    reported_state = u.state;
+    warnings.notice("t " + std::to_string(f.stamp) + " s: " + name_of(u.state) + " (misfit " +
+                    std::to_string(u.misfit) + ", " + std::to_string(u.particles) + " particles, " +
+                    std::to_string(filter->estimate().clusters.size()) + " clusters)");
+  }
   const std::lock_guard lock(mutex);
   ++counts.scans_processed;
   if (ran) {
@@ -124,7 +130,11 @@ void Node::Impl::process(const ReadyScan& scan) {
     counts.pose_stamp = f.stamp;
   }
   latencies_ms.push_back(ms_since(scan.arrived));
-  if (latencies_ms.size() > kLatencyWindow) latencies_ms.pop_front();
+  processing_ms.push_back(ms_since(scan.ready));
+  if (latencies_ms.size() > kLatencyWindow) {
+    latencies_ms.pop_front();
+    processing_ms.pop_front();
+  }
 }
 
 }  // namespace mote::ros

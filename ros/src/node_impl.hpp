@@ -29,13 +29,13 @@ using Clock = std::chrono::steady_clock;
 /// A scan ready for the filter and when it arrived.
 struct ReadyScan {
   logs::ScanFrame frame;
-  Clock::time_point arrived;
+  Clock::time_point arrived;  ///< its sample was taken from DDS
+  Clock::time_point ready;    ///< paired with its odometry and handed to the filter
 };
 
 /// A Localizer prepared for a new map, with how it was initialized.
 struct PreparedFilter {
   std::unique_ptr<Localizer> filter;
-  std::optional<StartPose> deferred_start;  // an /initialpose that came before the map
   std::string how;  ///< "globally", "at the initial pose", ...
 };
 
@@ -66,7 +66,6 @@ struct Node::Impl {
   void swap_in(PreparedFilter prepared);
   void start_at(const StartPose& start);
   void process(const ReadyScan& scan);
-  void record_latency(Clock::time_point arrived);
   [[nodiscard]] std::optional<StartPose> start_pose_for_new_map() const;
 
   // Publishing, on the filter thread (node_outputs.cpp).
@@ -76,7 +75,7 @@ struct Node::Impl {
   void maybe_save_pose(double stamp);
 
   NodeOptions options;
-  detail::WarningLog warnings;
+  mutable detail::WarningLog warnings;  // thread-safe
   detail::Participant participant;
   std::vector<std::unique_ptr<detail::RawReader>> scan_readers;
   detail::RawReader tf_reader;
@@ -101,7 +100,8 @@ struct Node::Impl {
   bool nomotion_requested = false;
   bool stopping = false;
   NodeCounters counts;
-  std::deque<double> latencies_ms;  // of the last processed scans
+  std::deque<double> latencies_ms;   // arrival -> published, of the last processed scans
+  std::deque<double> processing_ms;  // ready -> published
 
   // The receive thread's own.
   logs::detail::ScanSync sync;
@@ -113,7 +113,8 @@ struct Node::Impl {
 
   // The filter thread's own.
   std::unique_ptr<Localizer> filter;
-  std::optional<StartPose> deferred_start;  // an /initialpose that came before the map
+  std::optional<StartPose> deferred_start;          // an /initialpose that came before the map
+  std::optional<LocalizationState> reported_state;  // the last state printed
   bool have_map_to_odom = false;
   Pose2 map_to_odom;
   Clock::time_point last_pose_save{};

@@ -95,9 +95,9 @@ void Node::Impl::take_maps() {
       const std::lock_guard lock(mutex);
       ++counts.malformed;
     }
-    warnings.warn("malformed " + map_reader.topic(), "map on " + map_reader.topic() +
-                                                         " refused, keeping the one in use: " +
-                                                         what_of(e));
+    warnings.warn(
+        "malformed " + map_reader.topic(),
+        "map on " + map_reader.topic() + " refused, keeping the one in use: " + what_of(e));
   }
 }
 
@@ -110,9 +110,9 @@ void Node::Impl::take_initial_poses() {
         throw InputError("/initialpose", "pose", "a finite pose and covariance");
       }
       if (!m.frame_id.empty() && m.frame_id != options.global_frame) {
-        throw InputError("/initialpose", "header.frame_id",
-                         "the global frame '" + options.global_frame + "', not '" + m.frame_id +
-                             "'");
+        throw InputError(
+            "/initialpose", "header.frame_id",
+            "the global frame '" + options.global_frame + "', not '" + m.frame_id + "'");
       }
       {
         const std::lock_guard lock(mutex);
@@ -135,15 +135,16 @@ void Node::Impl::hand_over_ready_scans() {
   (void)sync.flush(ready, false);
   const logs::detail::ScanSync::Dropped& d = sync.dropped();
   if (d.no_transform > counts.dropped_no_transform) {
-    warnings.warn("no transform", "no transform from " +
-                                      (sync.base_frame().empty() ? options.odom_frame + "'s child"
-                                                                 : sync.base_frame()) +
-                                      " to the scan's frame '" + d.last_frame +
-                                      "' on /tf or /tf_static: scan dropped");
+    warnings.warn(
+        "no transform",
+        "no transform from " +
+            (sync.base_frame().empty() ? options.odom_frame + "'s child" : sync.base_frame()) +
+            " to the scan's frame '" + d.last_frame + "' on /tf or /tf_static: scan dropped");
   }
   if (d.no_odometry > counts.dropped_no_odometry) {
-    warnings.warn("no odometry", "no " + options.odom_frame + " -> base transform at the "
-                                 "scan's stamp on /tf in time: scan dropped");
+    warnings.warn("no odometry", "no " + options.odom_frame +
+                                     " -> base transform at the "
+                                     "scan's stamp on /tf in time: scan dropped");
   }
   const std::lock_guard lock(mutex);
   counts.dropped_no_transform = d.no_transform;
@@ -155,7 +156,7 @@ void Node::Impl::hand_over_ready_scans() {
       arrivals.pop_front();
     }
     if (pending_scan) ++counts.scans_skipped;  // the newest scan wins
-    pending_scan = ReadyScan{std::move(frame), arrived};
+    pending_scan = ReadyScan{std::move(frame), arrived, Clock::now()};
   }
   if (!ready.empty()) wake_filter.notify_all();
 }
@@ -179,8 +180,8 @@ void Node::Impl::warn_about_silence() {
   if (now - std::max(last_scan_arrival, started) > kSilence) {
     std::string topics;
     for (const auto& r : scan_readers) {
-      topics += (topics.empty() ? "" : ", ") + r->topic() + " (publishers matched: " +
-                std::to_string(r->matched()) + ")";
+      topics += (topics.empty() ? "" : ", ") + r->topic() +
+                " (publishers matched: " + std::to_string(r->matched()) + ")";
     }
     warnings.warn("no scans", "no scans arrive on " + topics);
   }

@@ -23,11 +23,10 @@ std::string fixed(double v, int digits) {
 
 void Node::Impl::publish_transform(double stamp) {
   if (!options.tf_broadcast) return;
-  const TransformStamped t{
-      .header = {.stamp = to_stamp(stamp + options.transform_tolerance),
-                 .frame_id = options.global_frame},
-      .child_frame_id = options.odom_frame,
-      .transform = map_to_odom};
+  const TransformStamped t{.header = {.stamp = to_stamp(stamp + options.transform_tolerance),
+                                      .frame_id = options.global_frame},
+                           .child_frame_id = options.odom_frame,
+                           .transform = map_to_odom};
   tf_writer.write(encode_tf(std::span(&t, 1)));
   const std::lock_guard lock(mutex);
   ++counts.published;
@@ -55,14 +54,14 @@ void Node::Impl::publish_estimate(double stamp) {
 void Node::Impl::publish_state(double stamp) {
   const UpdateStats& u = filter->last_update();
   const LocalizationState state = u.state;
-  DiagnosticStatus status{
-      .level = state == LocalizationState::kTracking    ? DiagnosticStatus::kOk
-               : state == LocalizationState::kUncertain ? DiagnosticStatus::kWarn
-                                                        : DiagnosticStatus::kError,
-      .name = "mote: localization",
-      .message = name_of(state),
-      .hardware_id = "mote",
-      .values = {}};
+  DiagnosticStatus status{.level = state == LocalizationState::kTracking ? DiagnosticStatus::kOk
+                                   : state == LocalizationState::kUncertain
+                                       ? DiagnosticStatus::kWarn
+                                       : DiagnosticStatus::kError,
+                          .name = "mote: localization",
+                          .message = name_of(state),
+                          .hardware_id = "mote",
+                          .values = {}};
   NodeCounters c;
   {
     const std::lock_guard lock(mutex);
@@ -75,12 +74,11 @@ void Node::Impl::publish_state(double stamp) {
                    {"relocalized", std::to_string(u.relocalized)},
                    {"scans_received", std::to_string(c.scans_received)},
                    {"scans_skipped", std::to_string(c.scans_skipped)},
-                   {"scans_dropped", std::to_string(c.dropped_no_transform +
-                                                    c.dropped_no_odometry + c.dropped_no_map)},
+                   {"scans_dropped", std::to_string(c.dropped_no_transform + c.dropped_no_odometry +
+                                                    c.dropped_no_map)},
                    {"malformed", std::to_string(c.malformed)}};
   const DiagnosticArray message{
-      .header = {.stamp = to_stamp(stamp), .frame_id = options.global_frame},
-      .status = {status}};
+      .header = {.stamp = to_stamp(stamp), .frame_id = options.global_frame}, .status = {status}};
   const std::string bytes = encode_diagnostics(message);
   state_writer.write(bytes);
   if (Clock::now() - last_diagnostics >= kDiagnosticsPeriod) {
@@ -90,8 +88,7 @@ void Node::Impl::publish_state(double stamp) {
 }
 
 void Node::Impl::maybe_save_pose(double stamp) {
-  if (options.pose_file.empty() ||
-      filter->last_update().state != LocalizationState::kTracking) {
+  if (options.pose_file.empty() || filter->last_update().state != LocalizationState::kTracking) {
     return;
   }
   const auto period = std::chrono::duration<double>(1.0 / options.save_pose_rate);

@@ -64,8 +64,8 @@ std::unique_ptr<RawWriter> publish_map(const Participant& p, const PlayOptions& 
   if (o.map.empty()) return nullptr;
   const OccupancyGrid grid = load_map(o.map);
   auto writer = std::make_unique<RawWriter>(p, o.map_topic, "nav_msgs/msg/OccupancyGrid", kMapQos);
-  const double now = std::chrono::duration<double>(
-                         std::chrono::system_clock::now().time_since_epoch()).count();
+  const double now =
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   writer->write(encode_occupancy_grid(Header{to_stamp(now), "map"}, grid));
   return writer;
 }
@@ -115,7 +115,8 @@ void linger(const PlayOptions& o) {
 }  // namespace detail
 
 PlayResult play(const PlayOptions& options) {
-  if (!(options.rate >= 0.0)) throw ConfigError("play: --rate must be >= 0 (0: as fast as possible)");
+  if (!(options.rate >= 0.0))
+    throw ConfigError("play: --rate must be >= 0 (0: as fast as possible)");
   const auto start = detail::Clock::now();
   const detail::Participant participant(options.domain_id);
   const std::unique_ptr<detail::RawWriter> map = detail::publish_map(participant, options);

@@ -20,9 +20,9 @@ void write_pose_file(const std::filesystem::path& path, const Pose2& pose, doubl
                               pose.x, pose.y, pose.theta, stamp);
   std::FILE* f = std::fopen(temporary.c_str(), "w");
   if (f == nullptr) throw Error("cannot write the pose file " + temporary.string());
-  const bool written = std::fwrite(text, 1, static_cast<std::size_t>(n), f) ==
-                           static_cast<std::size_t>(n) &&
-                       std::fflush(f) == 0 && fsync(fileno(f)) == 0;
+  const bool written =
+      std::fwrite(text, 1, static_cast<std::size_t>(n), f) == static_cast<std::size_t>(n) &&
+      std::fflush(f) == 0 && fsync(fileno(f)) == 0;
   const bool closed = std::fclose(f) == 0;
   if (!written || !closed) throw Error("cannot write the pose file " + temporary.string());
   std::error_code ec;
@@ -52,8 +52,9 @@ std::optional<Pose2> read_pose_file(const std::filesystem::path& path,
   }
   const Pose2 pose{x, y, yaw};
   if (!is_finite(pose)) {
-    warnings.warn("pose file", path.string() + ": expected finite x:, y: and yaw: lines; "
-                               "starting without the saved pose");
+    warnings.warn("pose file", path.string() +
+                                   ": expected finite x:, y: and yaw: lines; "
+                                   "starting without the saved pose");
     return std::nullopt;
   }
   return pose;

@@ -115,8 +115,7 @@ bool untyped_to_sample(const ddsi_sertype*, const ddsi_serdata*, void*, void**, 
 
 bool sample_eqkey(const ddsi_serdata*, const ddsi_serdata*) { return true; }
 
-std::size_t sample_print(const ddsi_sertype*, const ddsi_serdata* d, char* buf,
-                         std::size_t size) {
+std::size_t sample_print(const ddsi_sertype*, const ddsi_serdata* d, char* buf, std::size_t size) {
   const int n = std::snprintf(buf, size, "(%zu bytes of CDR)", as_raw(d).bytes.size());
   return n < 0 ? 0 : static_cast<std::size_t>(n);
 }
@@ -186,8 +185,7 @@ std::size_t type_serialized_size(const ddsi_sertype*, const void* sample) {
   return static_cast<const std::string_view*>(sample)->size();
 }
 
-bool type_serialize_into(const ddsi_sertype*, const void* sample, void* buffer,
-                         std::size_t size) {
+bool type_serialize_into(const ddsi_sertype*, const void* sample, void* buffer, std::size_t size) {
   const auto& view = *static_cast<const std::string_view*>(sample);
   if (size < view.size()) return false;
   std::memcpy(buffer, view.data(), view.size());

@@ -52,11 +52,12 @@ class Process {
   int wait(std::chrono::milliseconds timeout) {
     const auto end = std::chrono::steady_clock::now() + timeout;
     for (;;) {
+      if (done_) return status_;
       int status = 0;
-      const pid_t r = waitpid(pid_, &status, WNOHANG);
-      if (r == pid_) {
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
         done_ = true;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        status_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        return status_;
       }
       if (std::chrono::steady_clock::now() > end) return -1;
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -66,6 +67,7 @@ class Process {
  private:
   pid_t pid_ = -1;
   bool done_ = false;
+  int status_ = -1;
 };
 
 }  // namespace mote::ros::testing

@@ -88,8 +88,8 @@ TEST(NodeEndToEnd, LocalizesTheTurtleBotRecordingPlayedOverDdsAsReplayDoes) {
                (dir / "node.log").string());
   ASSERT_TRUE(node.started());
   // The map goes out on /map after the node has started (transient local: it waits for it).
-  Process play({MOTE_EXE, "play", bag.string(), "--map", map.string(), "--domain", domain,
-                "--wait", "60", "--rate", "1"},
+  Process play({MOTE_EXE, "play", bag.string(), "--map", map.string(), "--domain", domain, "--wait",
+                "60", "--rate", "1"},
                (dir / "play.log").string());
   listen_until_exit(listener, play, 180s);
   ASSERT_EQ(play.wait(1ms), 0) << slurp(dir / "play.log");
@@ -103,8 +103,8 @@ TEST(NodeEndToEnd, LocalizesTheTurtleBotRecordingPlayedOverDdsAsReplayDoes) {
   listener.drain();
 
   const std::string json = slurp(stats);
-  std::cout << "node: " << json << "replay's last pose " << replayed.x << " " << replayed.y
-            << " " << replayed.theta << '\n';
+  std::cout << "node: " << json << "replay's last pose " << replayed.x << " " << replayed.y << " "
+            << replayed.theta << '\n';
   EXPECT_NE(json.find("\"state\": \"tracking\""), std::string::npos) << json;
   EXPECT_GE(json_number(json, "scans_received"), 300) << json;
   EXPECT_EQ(json_number(json, "malformed"), 0) << json;
@@ -114,8 +114,7 @@ TEST(NodeEndToEnd, LocalizesTheTurtleBotRecordingPlayedOverDdsAsReplayDoes) {
       << "node " << live.x << " " << live.y << ", replay " << replayed.x << " " << replayed.y;
   EXPECT_LT(std::abs(wrap_angle(live.theta - replayed.theta)), 0.05);
   ASSERT_FALSE(listener.map_to_odom.empty());
-  EXPECT_GE(static_cast<double>(listener.map_to_odom.size()),
-            json_number(json, "published") * 0.9);
+  EXPECT_GE(static_cast<double>(listener.map_to_odom.size()), json_number(json, "published") * 0.9);
   EXPECT_GT(listener.states, 0U);
 }
 

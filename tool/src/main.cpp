@@ -39,8 +39,8 @@ constexpr std::string_view kHelp =
     "`mote COMMAND --help` lists each command's flags with units and defaults;\n"
     "`mote --version` prints the version and the kernel variant in use (MOTE_ISA).\n";
 
-constexpr std::array<std::string_view, 9> kCommands{
-    "replay", "simulate", "kidnap", "crowd", "run", "info", "calibrate", "node", "play"};
+constexpr std::array<std::string_view, 9> kCommands{"replay", "simulate",  "kidnap", "crowd", "run",
+                                                    "info",   "calibrate", "node",   "play"};
 
 // "mote COMMAND: " for a command's errors, "mote: " before there is one.
 std::string prefix(std::string_view command) {

@@ -14,8 +14,9 @@ namespace {
 constexpr std::array<FlagSpec, 8> kFlags{{
     {"map", "MAP.yaml", "map_server map published on the map topic (transient local)"},
     {"map-topic", "TOPIC", "topic of the map (default map)"},
-    {"rate", "R", "playback speed: 1 recorded rate, 2 twice as fast, 0 as fast as possible "
-                  "(default 1)"},
+    {"rate", "R",
+     "playback speed: 1 recorded rate, 2 twice as fast, 0 as fast as possible "
+     "(default 1)"},
     {"wait", "S", "s to wait for a subscriber on the scan topic before starting (default 0)"},
     {"linger", "S", "s to keep publishing the map to late subscribers after the end (default 0)"},
     {"domain", "ID", "DDS domain (default: ROS_DOMAIN_ID, else 0)"},

@@ -28,15 +28,15 @@ namespace mote::ros {
 /// parameters; the defaults are nav2's, except that an empty base frame means "the child of the
 /// odometry frame on /tf", as `mote replay` reads bags.
 struct NodeOptions {
-  LocalizerConfig config;                          ///< the filter (threads: config.threads)
-  std::vector<std::string> scan_topics{"scan"};    ///< scan_topic; several lasers: one update each
-  std::string map_topic = "map";                   ///< nav_msgs/OccupancyGrid, transient local
-  std::string global_frame = "map";                ///< global_frame_id
-  std::string odom_frame = "odom";                 ///< odom_frame_id
-  std::string base_frame;                          ///< base_frame_id; empty: the child of odom
-  double transform_tolerance = 1.0;                ///< s, map -> odom is post-dated by this
-  bool tf_broadcast = true;                        ///< publish map -> odom
-  std::optional<Pose2> initial_pose;               ///< set_initial_pose / initial_pose.*
+  LocalizerConfig config;                        ///< the filter (threads: config.threads)
+  std::vector<std::string> scan_topics{"scan"};  ///< scan_topic; several lasers: one update each
+  std::string map_topic = "map";                 ///< nav_msgs/OccupancyGrid, transient local
+  std::string global_frame = "map";              ///< global_frame_id
+  std::string odom_frame = "odom";               ///< odom_frame_id
+  std::string base_frame;                        ///< base_frame_id; empty: the child of odom
+  double transform_tolerance = 1.0;              ///< s, map -> odom is post-dated by this
+  bool tf_broadcast = true;                      ///< publish map -> odom
+  std::optional<Pose2> initial_pose;             ///< set_initial_pose / initial_pose.*
   /// Covariance of the initial pose (x m, y m, yaw rad); amcl's initial_cov_xx 0.5 * 0.5 etc.
   Eigen::Matrix3d initial_covariance = Eigen::Vector3d(0.25, 0.25, 0.0685).asDiagonal();
   /// A map_server YAML to use instead of (until) the map topic; empty: wait for the topic.
@@ -54,10 +54,10 @@ struct NodeOptions {
 
 /// What the node has seen and done so far.
 struct NodeCounters {
-  std::uint64_t scans_received = 0;   ///< scans decoded on every scan topic
-  std::uint64_t scans_processed = 0;  ///< scans handed to the filter (update or not moved)
-  std::uint64_t updates = 0;          ///< filter updates that ran
-  std::uint64_t scans_skipped = 0;    ///< replaced by a newer scan while the filter was busy
+  std::uint64_t scans_received = 0;        ///< scans decoded on every scan topic
+  std::uint64_t scans_processed = 0;       ///< scans handed to the filter (update or not moved)
+  std::uint64_t updates = 0;               ///< filter updates that ran
+  std::uint64_t scans_skipped = 0;         ///< replaced by a newer scan while the filter was busy
   std::uint64_t dropped_no_transform = 0;  ///< no transform base -> the scan's frame
   std::uint64_t dropped_no_odometry = 0;   ///< no odometry at the scan's stamp in time
   std::uint64_t dropped_no_map = 0;        ///< scans before any map arrived
@@ -67,12 +67,18 @@ struct NodeCounters {
   std::uint64_t published = 0;             ///< map -> odom transforms published
   LocalizationState state = LocalizationState::kUncertain;
   double misfit = 0.0;
-  Pose2 pose;                ///< the last reported pose (map frame)
-  double pose_stamp = 0.0;   ///< s, its scan's stamp
+  Pose2 pose;               ///< the last reported pose (map frame)
+  double pose_stamp = 0.0;  ///< s, its scan's stamp
   /// ms from a scan's arrival to its map -> odom being published: p50 and p99 of the
-  /// processed scans so far (0 before any).
+  /// processed scans so far (0 before any). It includes the wait for the odometry at the scan's
+  /// stamp on /tf, which is the robot's (a lidar that stamps its scans before it publishes them
+  /// has odometry at hand; one that publishes first waits for the next odom -> base).
   double latency_p50_ms = 0.0;
   double latency_p99_ms = 0.0;
+  /// ms from the scan's pairing with its odometry to its map -> odom being published: what the
+  /// node itself adds (the update, the estimate, the messages).
+  double processing_p50_ms = 0.0;
+  double processing_p99_ms = 0.0;
 };
 
 /// A live localizer on a ROS 2 graph. Starts its threads in the constructor; the destructor
