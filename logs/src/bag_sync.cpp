@@ -84,7 +84,12 @@ std::optional<ScanSync::Mount> ScanSync::mount(const std::string& frame) const {
 void ScanSync::drop_stale() {
   while (pending_.size() > 1 &&
          pending_.front().scan.stamp < pending_.back().scan.stamp - max_wait_) {
-    ++dropped_.no_odometry;
+    if (mount(pending_.front().frame_id)) {
+      ++dropped_.no_odometry;
+    } else {
+      ++dropped_.no_transform;
+      dropped_.last_frame = pending_.front().frame_id;
+    }
     pending_.pop_front();
   }
   const double keep_from =

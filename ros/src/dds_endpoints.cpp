@@ -49,6 +49,11 @@ dds_entity_t make_topic(const Participant& p, std::string_view ros_topic, std::s
   return topic;
 }
 
+// The fully qualified ROS name, as ROS 2 prints it ("scan" -> "/scan").
+std::string qualified(std::string_view ros_topic) {
+  return ros_topic.starts_with('/') ? std::string(ros_topic) : "/" + std::string(ros_topic);
+}
+
 }  // namespace
 
 dds_entity_t check_dds(dds_entity_t result, const std::string& what) {
@@ -66,7 +71,7 @@ Participant::~Participant() { dds_delete(handle_); }
 
 RawWriter::RawWriter(const Participant& participant, std::string_view ros_topic,
                      std::string_view ros_type, TopicQos qos)
-    : topic_(ros_topic) {
+    : topic_(qualified(ros_topic)) {
   const dds_entity_t topic = make_topic(participant, ros_topic, ros_type, &type_);
   const auto q = make_qos(qos);
   writer_ = check_dds(dds_create_writer(participant.handle(), topic, q.get(), nullptr),
@@ -89,7 +94,7 @@ std::size_t RawWriter::matched() const {
 
 RawReader::RawReader(const Participant& participant, std::string_view ros_topic,
                      std::string_view ros_type, TopicQos qos)
-    : topic_(ros_topic) {
+    : topic_(qualified(ros_topic)) {
   const dds_entity_t topic = make_topic(participant, ros_topic, ros_type, nullptr);
   const auto q = make_qos(qos);
   reader_ = check_dds(dds_create_reader(participant.handle(), topic, q.get(), nullptr),

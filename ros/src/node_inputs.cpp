@@ -3,6 +3,7 @@
 #include <cmath>
 #include <exception>
 
+#include "bag_format.hpp"
 #include "mote/core/error.hpp"
 #include "mote/ros/messages.hpp"
 #include "node_impl.hpp"
@@ -17,6 +18,17 @@ constexpr auto kSilence = std::chrono::seconds(5);
 constexpr std::size_t kMaxArrivals = 256;
 
 std::string what_of(const std::exception& e) { return e.what(); }
+
+// logs' CDR decoders throw BagDecodeError (an offset and a problem): as an InputError naming
+// the topic, so one handler serves every input.
+template <class Decode>
+auto decoded(const std::string& topic, Decode&& decode) {
+  try {
+    return decode();
+  } catch (const logs::detail::BagDecodeError& e) {
+    throw InputError(topic, "byte " + std::to_string(e.offset), e.problem);
+  }
+}
 
 Eigen::Matrix3d planar_covariance(const std::array<double, 36>& c) {
   Eigen::Matrix3d m;
@@ -50,7 +62,8 @@ void Node::Impl::take_inputs() {
 void Node::Impl::take_transforms(const detail::RawReader& reader) {
   for (const std::string& bytes : reader.take()) {
     try {
-      sync.add_transforms(logs::detail::decode_tf_cdr(bytes));
+      sync.add_transforms(
+          decoded(reader.topic(), [&] { return logs::detail::decode_tf_cdr(bytes); }));
     } catch (const std::exception& e) {
       {
         const std::lock_guard lock(mutex);
@@ -65,7 +78,8 @@ void Node::Impl::take_transforms(const detail::RawReader& reader) {
 void Node::Impl::take_scans(const detail::RawReader& reader) {
   for (const std::string& bytes : reader.take()) {
     try {
-      logs::detail::ScanMessage scan = logs::detail::decode_laser_scan_cdr(bytes);
+      logs::detail::ScanMessage scan =
+          decoded(reader.topic(), [&] { return logs::detail::decode_laser_scan_cdr(bytes); });
       if (!std::isfinite(scan.scan.stamp)) throw InputError(reader.topic(), "header", "no stamp");
       arrivals.emplace_back(scan.scan.stamp, Clock::now());
       if (arrivals.size() > kMaxArrivals) arrivals.pop_front();
@@ -104,7 +118,8 @@ void Node::Impl::take_maps() {
 void Node::Impl::take_initial_poses() {
   for (const std::string& bytes : initial_pose_reader.take()) {
     try {
-      const logs::detail::PoseMessage m = logs::detail::decode_pose_cdr(bytes);
+      const logs::detail::PoseMessage m =
+          decoded("/initialpose", [&] { return logs::detail::decode_pose_cdr(bytes); });
       const Eigen::Matrix3d cov = planar_covariance(m.covariance);
       if (!is_finite(m.pose) || !cov.allFinite()) {
         throw InputError("/initialpose", "pose", "a finite pose and covariance");
