@@ -4,8 +4,11 @@
 #include "cdr_writer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "mote/core/error.hpp"
 
@@ -35,8 +38,24 @@ void CdrWriter::align(std::size_t size) {
 
 void CdrWriter::raw(std::uint64_t bits, std::size_t size) {
   align(size);
+  std::array<char, 8> little{};
   for (std::size_t k = 0; k < size; ++k) {
-    out_.push_back(static_cast<char>(static_cast<unsigned char>(bits >> (8U * k))));
+    little[k] = static_cast<char>(static_cast<unsigned char>(bits >> (8U * k)));
+  }
+  out_.append(little.data(), size);
+}
+
+template <class T>
+void CdrWriter::elements(std::span<const T> values) {
+  if (values.empty()) return;
+  align(sizeof(T));
+  if constexpr (std::endian::native == std::endian::little) {
+    const std::size_t first = out_.size();
+    out_.resize(first + values.size_bytes());
+    std::memcpy(out_.data() + first, values.data(), values.size_bytes());
+  } else {
+    using Bits = std::conditional_t<sizeof(T) == 8, std::uint64_t, std::uint32_t>;
+    for (const T v : values) raw(std::bit_cast<Bits>(v), sizeof(T));
   }
 }
 
@@ -56,10 +75,11 @@ void CdrWriter::string(std::string_view s) {
 
 void CdrWriter::sequence(std::size_t count) { u32(checked_count(count, "sequence")); }
 
+void CdrWriter::f64_array(std::span<const double> values) { elements(values); }
+
 void CdrWriter::f32_sequence(std::span<const float> values) {
   sequence(values.size());
-  reserve(4 * values.size());
-  for (const float v : values) f32(v);
+  elements(values);
 }
 
 std::string CdrWriter::finish() && {

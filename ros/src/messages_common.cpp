@@ -40,16 +40,13 @@ void write_header(CdrWriter& w, const Header& header) {
   w.string(header.frame_id);
 }
 
-void write_planar_pose(CdrWriter& w, const Pose2& pose) {
-  w.f64(pose.x);
-  w.f64(pose.y);
-  w.f64(0.0);
-  // The unit quaternion of a rotation by theta about z, as tf2's setRPY(0, 0, theta) makes it.
-  w.f64(0.0);
-  w.f64(0.0);
-  w.f64(std::sin(0.5 * pose.theta));
-  w.f64(std::cos(0.5 * pose.theta));
+std::array<double, 7> planar_pose(const Pose2& pose) {
+  // Position (x, y, 0), then the unit quaternion (x, y, z, w) of a rotation by theta about z,
+  // as tf2's setRPY(0, 0, theta) makes it.
+  return {pose.x, pose.y, 0.0, 0.0, 0.0, std::sin(0.5 * pose.theta), std::cos(0.5 * pose.theta)};
 }
+
+void write_planar_pose(CdrWriter& w, const Pose2& pose) { w.f64_array(planar_pose(pose)); }
 
 }  // namespace detail
 }  // namespace mote::ros

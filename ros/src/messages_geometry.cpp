@@ -2,6 +2,7 @@
 /// The localizer's outputs: geometry_msgs/PoseWithCovarianceStamped, tf2_msgs/TFMessage and
 /// nav2_msgs/ParticleCloud.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 
@@ -29,7 +30,7 @@ std::string encode_pose_with_covariance(const PoseWithCovarianceStamped& msg) {
   detail::CdrWriter w;
   detail::write_header(w, msg.header);
   detail::write_planar_pose(w, msg.pose);
-  for (const double v : full_covariance(msg.covariance)) w.f64(v);
+  w.f64_array(full_covariance(msg.covariance));
   return std::move(w).finish();
 }
 
@@ -51,8 +52,12 @@ std::string encode_particle_cloud(const Header& header, std::span<const Particle
   detail::write_header(w, header);
   w.sequence(particles.size());
   for (const Particle& p : particles) {
-    detail::write_planar_pose(w, p.pose);
-    w.f64(p.weight);
+    // Pose then weight: 8 float64 in a row, written at once.
+    std::array<double, 8> values{};
+    const std::array<double, 7> pose = detail::planar_pose(p.pose);
+    std::copy(pose.begin(), pose.end(), values.begin());
+    values[7] = p.weight;
+    w.f64_array(values);
   }
   return std::move(w).finish();
 }

@@ -72,8 +72,12 @@ Pose2 read_origin(CdrReader& r) {
   const double qz = finite_f64(r, "info.origin.orientation.z");
   const double qw = finite_f64(r, "info.origin.orientation.w");
   const double norm2 = qx * qx + qy * qy + qz * qz + qw * qw;
-  if (!(norm2 > 1e-12)) {
-    throw BagDecodeError{at, "info.origin.orientation: expected a unit quaternion, got length 0"};
+  // Any length in between is taken as the same rotation (a quaternion is read up to scale).
+  if (!(norm2 > 1e-12) || !std::isfinite(norm2)) {
+    throw BagDecodeError{at,
+                         "info.origin.orientation: expected a unit quaternion, got one of "
+                         "length " +
+                             std::to_string(std::sqrt(norm2))};
   }
   // (qx^2 + qy^2) / |q|^2 is sin^2 of half the angle between the grid's normal and z.
   const double max_tilt = std::sin(0.5 * kMaxTilt);

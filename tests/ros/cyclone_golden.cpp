@@ -53,8 +53,7 @@ CycloneDomain::~CycloneDomain() {
   dds_delete(domain_);
 }
 
-CycloneChannel::CycloneChannel(const CycloneDomain& domain, const dds_topic_descriptor_t& type)
-    : type_(type) {
+CycloneChannel::CycloneChannel(const CycloneDomain& domain, const dds_topic_descriptor_t& type) {
   const std::string name = unique_topic_name();
   topic_ = check(dds_create_topic(domain.participant(), &type, name.c_str(), nullptr, nullptr),
                  "dds_create_topic");

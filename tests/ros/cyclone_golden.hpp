@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -54,7 +55,6 @@ class CycloneChannel {
   void decode(std::string_view bytes, const std::function<void(const void*)>& check);
 
  private:
-  const dds_topic_descriptor_t& type_;
   dds_entity_t topic_ = 0;
   dds_entity_t writer_ = 0;
   dds_entity_t reader_ = 0;
@@ -62,17 +62,27 @@ class CycloneChannel {
 };
 
 /// A test suite that shares one domain between its tests (created once: a domain costs threads
-/// and sockets).
+/// and sockets). When Cyclone cannot create it, every test of the suite fails with the reason.
 class CycloneTest : public ::testing::Test {
  public:
-  static void SetUpTestSuite() { domain_ = std::make_unique<CycloneDomain>(); }
+  static void SetUpTestSuite() {
+    try {
+      domain_ = std::make_unique<CycloneDomain>();
+    } catch (const std::exception& e) {
+      setup_error_ = e.what();
+    }
+  }
   static void TearDownTestSuite() { domain_.reset(); }
 
  protected:
-  static const CycloneDomain& domain() { return *domain_; }
+  static const CycloneDomain& domain() {
+    if (!domain_) throw std::runtime_error("no Cyclone DDS domain: " + setup_error_);
+    return *domain_;
+  }
 
  private:
   static inline std::unique_ptr<CycloneDomain> domain_;
+  static inline std::string setup_error_;
 };
 
 /// Expects equal bytes; on a difference prints the first differing offset and both messages in

@@ -41,7 +41,7 @@ struct MapSample {
   }
 };
 
-class MapMessage : public CycloneTest {
+class OccupancyGridMessage : public CycloneTest {
  protected:
   CycloneChannel channel_{domain(), nav_msgs_msg_dds__OccupancyGrid__desc};
 
@@ -60,7 +60,7 @@ class MapMessage : public CycloneTest {
   }
 };
 
-TEST_F(MapMessage, EncodesAsMapServerPublishes) {
+TEST_F(OccupancyGridMessage, EncodesAsMapServerPublishes) {
   const OccupancyGrid grid(5, 3, 0.05, {-1.0, 2.5, 0.3},
                            Cells{F, O, U, F, F, O, O, U, U, U, U, F, F, U, U});
   MapSample sample;
@@ -77,7 +77,7 @@ TEST_F(MapMessage, EncodesAsMapServerPublishes) {
   });
 }
 
-TEST_F(MapMessage, DecodesAsAmclConvertsMaps) {
+TEST_F(OccupancyGridMessage, DecodesAsAmclConvertsMaps) {
   MapSample sample;
   const auto map = decode_occupancy_grid(channel_.serialize(&sample.s), "/map");
   EXPECT_EQ(map.header.frame_id, "map");
@@ -95,7 +95,7 @@ TEST_F(MapMessage, DecodesAsAmclConvertsMaps) {
   EXPECT_EQ(map.grid.at({1, 2}), F);
 }
 
-TEST_F(MapMessage, RoundTripsThroughTheEncoder) {
+TEST_F(OccupancyGridMessage, RoundTripsThroughTheEncoder) {
   const OccupancyGrid grid(4, 2, 0.1, {3.0, -4.0, -2.5}, Cells{U, F, O, F, F, F, O, U});
   const auto map = decode_occupancy_grid(encode_occupancy_grid({{7, 8}, "world"}, grid), "/map");
   EXPECT_EQ(map.header.frame_id, "world");
@@ -104,7 +104,7 @@ TEST_F(MapMessage, RoundTripsThroughTheEncoder) {
   EXPECT_NEAR(map.grid.origin().theta, -2.5, 1e-12);
 }
 
-TEST_F(MapMessage, RefusesEmptyGrids) {
+TEST_F(OccupancyGridMessage, RefusesEmptyGrids) {
   MapSample sample;
   sample.data.clear();
   sample.refresh();
@@ -118,7 +118,7 @@ TEST_F(MapMessage, RefusesEmptyGrids) {
   EXPECT_NE(std::string(rejection(sample).what()).find("at least one cell"), std::string::npos);
 }
 
-TEST_F(MapMessage, RefusesBadResolutions) {
+TEST_F(OccupancyGridMessage, RefusesBadResolutions) {
   for (const float res : {0.0F, -0.05F, NAN, INFINITY}) {
     MapSample sample;
     sample.s.info_.resolution_ = res;
@@ -128,7 +128,7 @@ TEST_F(MapMessage, RefusesBadResolutions) {
   }
 }
 
-TEST_F(MapMessage, RefusesNonFiniteOrTiltedOrigins) {
+TEST_F(OccupancyGridMessage, RefusesNonFiniteOrTiltedOrigins) {
   const std::vector<std::pair<std::function<void(geometry_msgs_msg_dds__Pose_&)>, const char*>>
       cases = {
           {[](auto& o) { o.position_.x_ = INFINITY; }, "info.origin.position.x"},
@@ -138,6 +138,10 @@ TEST_F(MapMessage, RefusesNonFiniteOrTiltedOrigins) {
              o.orientation_ = {0.0, 0.0, 0.0, 0.0};
            },
            "length 0"},
+          {[](auto& o) {
+             o.orientation_ = {0.0, 0.0, 1e300, 1e300};
+           },
+           "length inf"},
           // A roll of 0.1 rad: the grid would not lie in the xy plane.
           {[](auto& o) {
              o.orientation_ = {std::sin(0.05), 0.0, 0.0, std::cos(0.05)};
@@ -150,6 +154,9 @@ TEST_F(MapMessage, RefusesNonFiniteOrTiltedOrigins) {
     const InputError e = rejection(sample);
     EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
   }
+  MapSample rounded;  // a roll of 1e-9 rad, what rounding leaves in a quaternion from RPY
+  rounded.s.info_.origin_.orientation_.x_ = 5e-10;
+  EXPECT_NO_THROW((void)decode_occupancy_grid(channel_.serialize(&rounded.s), "/map"));
   MapSample unnormalized;  // a quaternion of another length is still a rotation about z
   for (double* c : {&unnormalized.s.info_.origin_.orientation_.z_,
                     &unnormalized.s.info_.origin_.orientation_.w_}) {
@@ -159,7 +166,7 @@ TEST_F(MapMessage, RefusesNonFiniteOrTiltedOrigins) {
   EXPECT_NEAR(map.grid.origin().theta, 0.3, 1e-12);
 }
 
-TEST_F(MapMessage, RefusesDataOfTheWrongLength) {
+TEST_F(OccupancyGridMessage, RefusesDataOfTheWrongLength) {
   MapSample sample;
   sample.data.pop_back();
   sample.refresh();
@@ -169,7 +176,7 @@ TEST_F(MapMessage, RefusesDataOfTheWrongLength) {
       << e.what();
 }
 
-TEST_F(MapMessage, RefusesGridsAboveTheCellBoundBeforeReadingTheData) {
+TEST_F(OccupancyGridMessage, RefusesGridsAboveTheCellBoundBeforeReadingTheData) {
   MapSample sample;
   sample.data.clear();
   sample.refresh();
@@ -187,7 +194,7 @@ TEST_F(MapMessage, RefusesGridsAboveTheCellBoundBeforeReadingTheData) {
   EXPECT_NO_THROW((void)decode_occupancy_grid(channel_.serialize(&small.s), "/map", 15));
 }
 
-TEST_F(MapMessage, RefusesMalformedCdr) {
+TEST_F(OccupancyGridMessage, RefusesMalformedCdr) {
   MapSample sample;
   const std::string bytes = channel_.serialize(&sample.s);
   for (const std::string& bad :

@@ -46,9 +46,9 @@ TEST_F(Golden, PoseWithCovarianceStamped) {
   fill(s.header_, msg.header);
   s.pose_.pose_ = idl_pose(msg.pose);
   // amcl's layout: x, y and yaw are rows and columns 0, 1 and 5 of the 6x6 matrix.
-  const std::array<int, 3> axes = {0, 1, 5};
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c)
+  const std::array<std::size_t, 3> axes = {0, 1, 5};
+  for (std::size_t r = 0; r < 3; ++r) {
+    for (std::size_t c = 0; c < 3; ++c)
       s.pose_.covariance_[6 * axes[r] + axes[c]] = msg.covariance[3 * r + c];
   }
   CycloneChannel channel(domain(), geometry_msgs_msg_dds__PoseWithCovarianceStamped__desc);
