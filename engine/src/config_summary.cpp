@@ -1,10 +1,39 @@
-// The lines a run prints first about its configuration: which defaults, and how a file applies.
+// The names the config files read the enums by, and the lines a run prints first about its
+// configuration: which defaults, and how a file applies.
 #include <string>
 #include <vector>
 
 #include "mote/engine/localizer_config.hpp"
 
 namespace mote {
+
+const char* name_of(LaserModel m) { return m == LaserModel::kBeam ? "beam" : "likelihood_field"; }
+
+const char* name_of(OdomModel m) {
+  switch (m) {
+    case OdomModel::kOmni:
+      return "omni";
+    case OdomModel::kAckermann:
+      return "ackermann";
+    case OdomModel::kDiff:
+      break;
+  }
+  return "diff";
+}
+
+const char* name_of(LikelihoodCombination m) {
+  return m == LikelihoodCombination::kAmclCubedSum ? "amcl" : "product";
+}
+
+const char* name_of(RayCasting m) {
+  switch (m) {
+    case RayCasting::kTable:
+      return "table";
+    case RayCasting::kExact:
+      break;
+  }
+  return "exact";
+}
 
 const char* name_of(ConfigDefaults d) { return d == ConfigDefaults::kNav2 ? "nav2" : "mote"; }
 

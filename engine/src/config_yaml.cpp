@@ -218,9 +218,9 @@ constexpr std::string_view kBeamSkipping =
 /// off, asks for nothing and passes in silence; any other value gets the warning.
 struct Unsupported {
   std::string_view name;
-  std::string_view off;  // the value that asks for nothing (empty: any value, see below)
-  std::string_view expected;
-  std::string_view what;  // the warning's text
+  std::string_view off;       // the value that asks for nothing
+  std::string_view expected;  // for error messages
+  std::string_view what;      // the warning's text; empty: any number passes
 };
 
 // beam_skip_* only tune what do_beamskip turns on: that key's warning covers them.
@@ -241,7 +241,7 @@ constexpr std::array<Unsupported, 7> kUnsupported{{
 /// True when `key` is one of kUnsupported; adds its warning when the value asks for something.
 bool check_unsupported(const std::string& key, const YAML::Node& value, const std::string& name,
                        std::vector<std::string>& warnings) {
-  const auto* u = std::ranges::find(kUnsupported, key, &Unsupported::name);
+  const auto u = std::ranges::find(kUnsupported, key, &Unsupported::name);
   if (u == kUnsupported.end()) return false;
   const bool is_bool = u->expected == "true or false";
   bool asks = false;
@@ -353,34 +353,6 @@ LoadedConfig parse_config(const std::string& yaml_text, const std::string& name,
   }
   validate(loaded.config, params, name);
   return loaded;
-}
-
-const char* name_of(LaserModel m) { return m == LaserModel::kBeam ? "beam" : "likelihood_field"; }
-
-const char* name_of(OdomModel m) {
-  switch (m) {
-    case OdomModel::kOmni:
-      return "omni";
-    case OdomModel::kAckermann:
-      return "ackermann";
-    case OdomModel::kDiff:
-      break;
-  }
-  return "diff";
-}
-
-const char* name_of(LikelihoodCombination m) {
-  return m == LikelihoodCombination::kAmclCubedSum ? "amcl" : "product";
-}
-
-const char* name_of(RayCasting m) {
-  switch (m) {
-    case RayCasting::kTable:
-      return "table";
-    case RayCasting::kExact:
-      break;
-  }
-  return "exact";
 }
 
 std::string config_yaml(const LocalizerConfig& config, const LocalizerConfig& base) {
