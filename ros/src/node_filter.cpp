@@ -109,11 +109,15 @@ void Node::Impl::process(const ReadyScan& scan) {
     // map -> odom = (map -> base) * (odom -> base)^-1 at the scan's stamp (REP 105).
     map_to_odom = compose(filter->estimate().refined.pose, inverse(f.odometry));
     have_map_to_odom = true;
+  }
+  // The transform first: it is what nav2 waits for; the cloud can take milliseconds to encode.
+  if (have_map_to_odom) publish_transform(f.stamp);
+  record_latency(scan);
+  if (ran) {
     publish_estimate(f.stamp);
     publish_state(f.stamp);
     maybe_save_pose(f.stamp);
   }
-  if (have_map_to_odom) publish_transform(f.stamp);
   if (ran && u.state != reported_state) {
     reported_state = u.state;
     warnings.notice("t " + std::to_string(f.stamp) + " s: " + name_of(u.state) + " (misfit " +
@@ -129,8 +133,14 @@ void Node::Impl::process(const ReadyScan& scan) {
     counts.pose = filter->estimate().refined.pose;
     counts.pose_stamp = f.stamp;
   }
-  latencies_ms.push_back(ms_since(scan.arrived));
-  processing_ms.push_back(ms_since(scan.ready));
+}
+
+void Node::Impl::record_latency(const ReadyScan& scan) {
+  const double total = ms_since(scan.arrived);
+  const double own = ms_since(scan.ready);
+  const std::lock_guard lock(mutex);
+  latencies_ms.push_back(total);
+  processing_ms.push_back(own);
   if (latencies_ms.size() > kLatencyWindow) {
     latencies_ms.pop_front();
     processing_ms.pop_front();

@@ -66,6 +66,7 @@ struct Node::Impl {
   void swap_in(PreparedFilter prepared);
   void start_at(const StartPose& start);
   void process(const ReadyScan& scan);
+  void record_latency(const ReadyScan& scan);
   [[nodiscard]] std::optional<StartPose> start_pose_for_new_map() const;
 
   // Publishing, on the filter thread (node_outputs.cpp).

@@ -18,7 +18,8 @@ namespace {
 constexpr std::array<FlagSpec, 21> kFlags{{
     {"config", "PARAMS.yaml",
      "nav2 params file as it is (its amcl section: frames, topics, laser, robot, particle bounds, "
-     "initial pose) or a flat mote config"},
+     "initial pose apply as written; noise and mixture values start mote's adaptive ones) or a "
+     "flat mote config"},
     {"nav2-defaults", "", "nav2_amcl's fixed algorithm instead of mote's adaptive one"},
     {"map", "MAP.yaml", "map_server map to use instead of the map topic (default: the topic)"},
     {"scan-topic", "TOPICS", "laser scan topic, or several separated by commas (default scan)"},

@@ -2,7 +2,9 @@
 
 #include <iostream>
 
+#include "mote/engine/node_params.hpp"
 #include "mote/ros/dds_domain.hpp"
+#include "run_config.hpp"
 
 namespace mote::tool {
 namespace {
@@ -18,19 +20,20 @@ std::vector<std::string> split_topics(const std::string& text) {
   return topics;
 }
 
-void apply_config_file(const ParsedArgs& args, ros::NodeOptions& o) {
-  if (args.has("nav2-defaults")) {
-    if (args.has("config")) {
-      throw args.error("nav2-defaults",
-                       "cannot be combined with --config: put 'defaults: nav2' in the file");
-    }
-    o.config = nav2_defaults();
-  }
-  const std::optional<std::string> path = args.text("config");
-  if (!path) return;
-  LoadedConfig loaded = load_config(*path);
-  for (const std::string& w : loaded.warnings) std::cerr << "mote node: warning: " << w << '\n';
-  o.config = loaded.config;
+// The params file's node keys (nav2_amcl's names and meanings): frames, topics, tf, the
+// start pose and the saved pose.
+void apply_node_params(const NodeParams& p, ros::NodeOptions& o) {
+  o.global_frame = p.global_frame_id;
+  o.odom_frame = p.odom_frame_id;
+  o.base_frame = p.base_frame_id;
+  o.scan_topics = p.scan_topics;
+  o.map_topic = p.map_topic;
+  o.transform_tolerance = p.transform_tolerance;
+  o.tf_broadcast = p.tf_broadcast;
+  if (p.set_initial_pose)
+    o.initial_pose = Pose2{p.initial_pose.x, p.initial_pose.y, wrap_angle(p.initial_pose.yaw)};
+  if (p.save_pose_rate > 0.0) o.save_pose_rate = p.save_pose_rate;
+  if (p.initialize_at_saved_pose) o.pose_file = p.saved_pose_filepath;
 }
 
 void apply_flags(const ParsedArgs& args, ros::NodeOptions& o) {
@@ -69,8 +72,16 @@ void apply_flags(const ParsedArgs& args, ros::NodeOptions& o) {
 
 ros::NodeOptions node_options(const ParsedArgs& args) {
   ros::NodeOptions o;
-  apply_config_file(args, o);
+  const LoadedConfig loaded = run_config(args, "node");
+  o.config = loaded.config;
+  if (const auto path = args.text("config")) apply_node_params(read_node_params(*path), o);
   apply_flags(args, o);
+  for (const std::string& line : config_summary(loaded)) std::cout << "mote node: " << line << '\n';
+  if (o.initial_pose) {
+    std::cout << "mote node: start: around " << o.initial_pose->x << ", " << o.initial_pose->y
+              << ", " << o.initial_pose->theta << " (m, m, rad)\n";
+  }
+  std::cout.flush();
   return o;
 }
 

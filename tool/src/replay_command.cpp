@@ -13,6 +13,7 @@
 #include "mote/replay/verdict.hpp"
 #include "mote/replay/viewer.hpp"
 #include "progress.hpp"
+#include "run_config.hpp"
 
 namespace mote::tool {
 namespace {
@@ -148,23 +149,6 @@ replay::ReplayOptions replay_options(const ParsedArgs& args, const LoadedConfig&
   }
   apply_model(args, o.config);
   return o;
-}
-
-LoadedConfig run_config(const ParsedArgs& args, const char* command) {
-  const std::optional<ConfigDefaults> asked =
-      args.has("nav2-defaults") ? std::optional(ConfigDefaults::kNav2) : std::nullopt;
-  const auto path = args.text("config");
-  if (!path) {
-    return {.config = asked ? nav2_defaults() : LocalizerConfig{},
-            .warnings = {},
-            .defaults = asked.value_or(ConfigDefaults::kMote),
-            .nav2_params = false,
-            .source = {}};
-  }
-  LoadedConfig loaded = load_config(*path, asked);
-  for (const std::string& w : loaded.warnings)
-    std::cerr << "mote " << command << ": warning: " << w << '\n';
-  return loaded;
 }
 
 void print_config_summary(const char* command, const LoadedConfig& loaded,
