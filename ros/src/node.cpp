@@ -91,11 +91,12 @@ Node::Node(NodeOptions options) : impl_(std::make_unique<Impl>(std::move(options
   Impl& s = *impl_;
   s.warnings.notice(
       "mote node: domain " + std::to_string(s.options.domain_id) + ", scans on " +
-      s.options.scan_topics.front() + (s.options.scan_topics.size() > 1 ? " and others" : "") +
+      s.scan_readers.front()->topic() + (s.scan_readers.size() > 1 ? " and others" : "") +
       ", map on " +
-      (s.options.map_file.empty() ? s.options.map_topic : s.options.map_file.string()) +
+      (s.options.map_file.empty() ? s.map_reader.topic() : s.options.map_file.string()) +
       ", frames " + s.options.global_frame + " -> " + s.options.odom_frame + " -> " +
-      (s.options.base_frame.empty() ? "(odom's child)" : s.options.base_frame));
+      (s.options.base_frame.empty() ? "(the child of " + s.options.odom_frame + " on /tf)"
+                                    : s.options.base_frame));
   s.receiver = std::thread([&s] { s.receive_loop(); });
   s.filter_thread = std::thread([&s] { s.filter_loop(); });
 }
