@@ -214,6 +214,15 @@ void Node::Impl::prepare_map(OccupancyGrid grid, std::string source) {
       } else {
         p.filter->initialize_global();
         p.how = "globally (" + std::to_string(p.filter->particles().size()) + " particles)";
+        if (const GlobalSetSize g = p.filter->global_set(); g.capped) {
+          warnings.warn("global set capped",
+                        "the global set is capped at max_particles: " +
+                            std::to_string(g.particles) + " particles, " +
+                            std::to_string(g.per_bin) + " per KLD bin of free space (asked " +
+                            std::to_string(options.config.global_particles_per_bin) +
+                            "): a global start may settle at a look-alike place; give a start "
+                            "pose (/initialpose, set_initial_pose) or raise max_particles");
+        }
       }
       warnings.notice("map from " + source + ": " + std::to_string(grid.width()) + " x " +
                       std::to_string(grid.height()) + " cells; filter started " + p.how);
