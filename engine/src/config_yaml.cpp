@@ -6,19 +6,21 @@
 #include <array>
 #include <charconv>
 #include <concepts>
-#include <fstream>
 #include <functional>
-#include <sstream>
+#include <optional>
 #include <string_view>
 
 #include "mote/core/did_you_mean.hpp"
 #include "mote/core/error.hpp"
 #include "mote/engine/localizer_config.hpp"
+#include "params_yaml.hpp"
 
 namespace mote {
 
 namespace {
 
+using detail::place_of;
+using detail::warning;
 using Setter = std::function<void(LocalizerConfig&, const YAML::Node&)>;
 using Getter = std::function<std::string(const LocalizerConfig&)>;
 
@@ -185,34 +187,77 @@ const std::vector<Key>& keys() {
            c.resample_ess_fraction = n.as<bool>() ? 0.5 : 1.0;
          },
          Getter{}},  // an alias of resample_ess_fraction
+        {"random_seed", kInt,
+         [](LocalizerConfig& c, const YAML::Node& n) {
+           // nav2_amcl: a seed >= 0, or -1 (its default) for one from the clock. mote is
+           // deterministic: -1 keeps its seed.
+           const auto seed = n.as<std::int64_t>();
+           if (seed >= 0) c.seed = static_cast<std::uint64_t>(seed);
+         },
+         Getter{}},  // an alias of seed
     };
     return k;
   }();
   return table;
 }
 
-// ROS plumbing that has no meaning for a library: accepted without a warning.
-constexpr std::array<std::string_view, 17> kRosOnlyKeys{
-    "base_frame_id",   "global_frame_id",       "odom_frame_id",       "scan_topic",
-    "map_topic",       "tf_broadcast",          "transform_tolerance", "use_sim_time",
-    "save_pose_rate",  "set_initial_pose",      "initial_pose",        "always_reset_initial_pose",
-    "first_map_only",  "bond_heartbeat_period", "use_map_topic",       "gui_publish_rate",
-    "restore_defaults"};
+// ROS plumbing that has no meaning for the filter, accepted without a word. The node's own keys
+// (frames, topics, tf, the start pose) are read_node_params's (node_params.hpp).
+constexpr std::array<std::string_view, 7> kRosOnlyKeys{
+    "use_sim_time",     "bond_heartbeat_period",         "use_map_topic", "gui_publish_rate",
+    "restore_defaults", "allow_parameter_qos_overrides", "qos_overrides"};
 
 bool is_ros_only(std::string_view key) {
-  for (std::string_view k : kRosOnlyKeys) {
-    if (k == key) return true;
+  return std::ranges::find(kRosOnlyKeys, key) != kRosOnlyKeys.end() || detail::is_node_param(key);
+}
+
+constexpr std::string_view kBeamSkipping =
+    "beam skipping is not implemented (unmapped_obstacle_filter does its job)";
+
+/// nav2_amcl's keys for what mote does not do. The value nav2 ships, which turns the feature
+/// off, asks for nothing and passes in silence; any other value gets the warning.
+struct Unsupported {
+  std::string_view name;
+  std::string_view off;       // the value that asks for nothing
+  std::string_view expected;  // for error messages
+  std::string_view what;      // the warning's text; empty: any number passes
+};
+
+// beam_skip_* only tune what do_beamskip turns on: that key's warning covers them.
+constexpr std::array<Unsupported, 7> kUnsupported{{
+    {"do_beamskip", "false", "true or false", kBeamSkipping},
+    {"beam_skip_distance", "", "a number", ""},
+    {"beam_skip_threshold", "", "a number", ""},
+    {"beam_skip_error_threshold", "", "a number", ""},
+    {"freespace_downsampling", "false", "true or false",
+     "mote draws its global set per KLD bin of free space (global_particles_per_bin), not per "
+     "cell"},
+    {"introspection_mode", "disabled", "disabled, metadata or contents",
+     "mote offers no ROS service to introspect"},
+    {"service_introspection_mode", "disabled", "disabled, metadata or contents",
+     "mote offers no ROS service to introspect"},
+}};
+
+/// True when `key` is one of kUnsupported; adds its warning when the value asks for something.
+bool check_unsupported(const std::string& key, const YAML::Node& value, const std::string& name,
+                       std::vector<std::string>& warnings) {
+  const auto u = std::ranges::find(kUnsupported, key, &Unsupported::name);
+  if (u == kUnsupported.end()) return false;
+  const bool is_bool = u->expected == "true or false";
+  bool asks = false;
+  try {
+    if (is_bool)
+      asks = value.as<bool>() != (u->off == "true");
+    else if (u->what.empty())
+      (void)value.as<double>();
+    else
+      asks = value.as<std::string>() != u->off;
+  } catch (const YAML::Exception&) {
+    throw InputError(name, place_of(value, key), "expected " + std::string(u->expected));
   }
-  return false;
-}
-
-std::string place_of(const YAML::Node& node, const std::string& key) {
-  return "line " + std::to_string(node.Mark().line + 1) + ", key '" + key + "'";
-}
-
-/// A warning in the format of InputError's message (one line, control characters escaped).
-std::string warning(const std::string& name, const std::string& place, const std::string& text) {
-  return InputError(name, place, text).what();
+  if (asks)
+    warnings.push_back(warning(name, place_of(value, key), std::string(u->what) + "; key ignored"));
+  return true;
 }
 
 void apply_key(LocalizerConfig& config, const std::string& key, const YAML::Node& value,
@@ -226,58 +271,18 @@ void apply_key(LocalizerConfig& config, const std::string& key, const YAML::Node
     }
     if (key == "laser_model_type" && value.as<std::string>() == "likelihood_field_prob") {
       warnings.push_back(warning(name, place_of(value, key),
-                                 "beam skipping is not implemented (unmapped_obstacle_filter does "
-                                 "its job); using likelihood_field"));
+                                 std::string(kBeamSkipping) + "; using likelihood_field"));
     }
     return;
   }
-  if (key.starts_with("beam_skip") || key == "do_beamskip") {
-    warnings.push_back(warning(
-        name, place_of(value, key),
-        "beam skipping is not implemented (unmapped_obstacle_filter does its job); key ignored"));
-  } else if (!is_ros_only(key)) {
-    // A typo must not run on with the default: the run would answer another question.
-    std::vector<std::string_view> known;
-    for (const Key& k : keys()) known.emplace_back(k.name);
-    const std::string best = closest_word(key, known);
-    throw InputError(name, place_of(value, key),
-                     best.empty() ? "unknown key (the keys are in README, Configuration)"
-                                  : "unknown key (did you mean '" + best + "'?)");
-  }
-}
-
-bool is_ros_params(const YAML::Node& root) { return root["amcl"] && root["amcl"].IsMap(); }
-
-// The map that holds the parameters: nav2's amcl/ros__parameters, ROS 1's amcl, or the root.
-YAML::Node parameter_map(const YAML::Node& root) {
-  if (is_ros_params(root)) {
-    const YAML::Node amcl = root["amcl"];
-    return amcl["ros__parameters"] ? amcl["ros__parameters"] : amcl;
-  }
-  return root;
-}
-
-YAML::Node parse_yaml(const std::string& yaml_text, const std::string& name) {
-  try {
-    YAML::Node root = YAML::Load(yaml_text);
-    if (root.IsNull()) throw InputError(name, "line 1", "no parameters: the file is empty");
-    if (!root.IsMap()) {
-      throw InputError(name, "line " + std::to_string(root.Mark().line + 1),
-                       "expected a map of parameters");
-    }
-    return root;
-  } catch (const YAML::Exception& e) {
-    throw InputError(name, "line " + std::to_string(std::max(e.mark.line, 0) + 1),
-                     "invalid YAML: " + e.msg);
-  }
-}
-
-std::string key_name(const YAML::Node& key, const std::string& name) {
-  if (!key.IsScalar()) {
-    throw InputError(name, "line " + std::to_string(key.Mark().line + 1),
-                     "expected a parameter name, found a list or map");
-  }
-  return key.Scalar();
+  if (check_unsupported(key, value, name, warnings) || is_ros_only(key)) return;
+  // A typo must not run on with the default: the run would answer another question.
+  std::vector<std::string_view> known;
+  for (const Key& k : keys()) known.emplace_back(k.name);
+  const std::string best = closest_word(key, known);
+  throw InputError(name, place_of(value, key),
+                   best.empty() ? "unknown key (the keys are in README, Configuration)"
+                                : "unknown key (did you mean '" + best + "'?)");
 }
 
 /// "line N, key 'k'" for a key of the file, "key 'k'" for one left at its default.
@@ -303,62 +308,51 @@ void validate(const LocalizerConfig& c, const YAML::Node& params, const std::str
   }
 }
 
-// What keys absent from the file default to: a nav2 or ROS amcl params file means amcl's
-// behaviour, so nav2's values; a flat file mote's, unless it says `defaults: nav2`.
-LocalizerConfig base_config(const YAML::Node& root, const YAML::Node& params,
-                            const std::string& name) {
-  const YAML::Node choice = params.IsMap() ? params["defaults"] : YAML::Node();
-  if (!choice) return is_ros_params(root) ? nav2_defaults() : LocalizerConfig{};
+/// The defaults the file names (`defaults: mote` or `nav2`), if it names one.
+std::optional<ConfigDefaults> named_defaults(const YAML::Node& params, const std::string& name) {
+  const YAML::Node choice = params["defaults"];
+  if (!choice) return std::nullopt;
   const std::string value = choice.IsScalar() ? choice.Scalar() : std::string();
-  if (value == "nav2") return nav2_defaults();
-  if (value == "mote") return LocalizerConfig{};
+  if (value == "nav2") return ConfigDefaults::kNav2;
+  if (value == "mote") return ConfigDefaults::kMote;
   throw InputError(name, place_of(choice, "defaults"), "expected mote or nav2");
+}
+
+// What keys absent from the file default to: mote's, unless the file (`defaults: nav2`) or the
+// caller (--nav2-defaults) asks for nav2_amcl's. A nav2 params file starts from mote's too: it
+// describes the robot (frames, laser, motion model, particle bounds) more than it chooses amcl's
+// algorithm, and under amcl's fixed behaviour every shared log ended lost (issue 46).
+ConfigDefaults chosen_defaults(const YAML::Node& params, const std::string& name,
+                               std::optional<ConfigDefaults> asked) {
+  const std::optional<ConfigDefaults> named = named_defaults(params, name);
+  if (asked && named && *asked != *named) {
+    throw InputError(name, place_of(params["defaults"], "defaults"),
+                     std::string("the file asks for ") + name_of(*named) +
+                         "'s defaults, the caller for " + name_of(*asked) + "'s: keep one");
+  }
+  return asked.value_or(named.value_or(ConfigDefaults::kMote));
 }
 
 }  // namespace
 
-LoadedConfig parse_config(const std::string& yaml_text, const std::string& name) {
-  const YAML::Node root = parse_yaml(yaml_text, name);
-  const YAML::Node params = parameter_map(root);
-  if (!params.IsMap()) {
-    throw InputError(name, "line " + std::to_string(params.Mark().line + 1),
-                     "expected a map of parameters");
-  }
-  LoadedConfig loaded{.config = base_config(root, params, name), .warnings = {}};
+LoadedConfig parse_config(const std::string& yaml_text, const std::string& name,
+                          std::optional<ConfigDefaults> defaults) {
+  const YAML::Node root = detail::parse_params_yaml(yaml_text, name);
+  const YAML::Node params = detail::parameter_map(root, name);
+  const ConfigDefaults chosen = chosen_defaults(params, name, defaults);
+  LoadedConfig loaded{
+      .config = chosen == ConfigDefaults::kNav2 ? nav2_defaults() : LocalizerConfig{},
+      .warnings = {},
+      .defaults = chosen,
+      .nav2_params = detail::is_ros_params(root),
+      .source = name};
   for (const auto& entry : params) {
     if (entry.first.IsScalar() && entry.first.Scalar() == "defaults") continue;
-    apply_key(loaded.config, key_name(entry.first, name), entry.second, name, loaded.warnings);
+    apply_key(loaded.config, detail::key_name(entry.first, name), entry.second, name,
+              loaded.warnings);
   }
   validate(loaded.config, params, name);
   return loaded;
-}
-
-const char* name_of(LaserModel m) { return m == LaserModel::kBeam ? "beam" : "likelihood_field"; }
-
-const char* name_of(OdomModel m) {
-  switch (m) {
-    case OdomModel::kOmni:
-      return "omni";
-    case OdomModel::kAckermann:
-      return "ackermann";
-    case OdomModel::kDiff:
-      break;
-  }
-  return "diff";
-}
-
-const char* name_of(LikelihoodCombination m) {
-  return m == LikelihoodCombination::kAmclCubedSum ? "amcl" : "product";
-}
-
-const char* name_of(RayCasting m) {
-  switch (m) {
-    case RayCasting::kTable:
-      return "table";
-    case RayCasting::kExact:
-      break;
-  }
-  return "exact";
 }
 
 std::string config_yaml(const LocalizerConfig& config, const LocalizerConfig& base) {
@@ -371,14 +365,9 @@ std::string config_yaml(const LocalizerConfig& config, const LocalizerConfig& ba
   return yaml;
 }
 
-LoadedConfig load_config(const std::filesystem::path& yaml) {
-  std::ifstream in(yaml);
-  if (!in || std::filesystem::is_directory(yaml)) {
-    throw InputError(yaml.string(), "", "cannot open the configuration file");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_config(text.str(), yaml.string());
+LoadedConfig load_config(const std::filesystem::path& yaml,
+                         std::optional<ConfigDefaults> defaults) {
+  return parse_config(detail::read_params_text(yaml), yaml.string(), defaults);
 }
 
 }  // namespace mote

@@ -171,10 +171,12 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   if (std::string problem = s.select(scan); !problem.empty())
     return s.reject(UpdateOutcome::kRejectedScan, std::move(problem));
   if (s.has_odometry && s.jumped(odometry)) return s.reset_odometry(odometry);
-  if (s.has_odometry && !s.moved_enough(odometry) && !s.still_update_due(scan))
+  if (s.has_odometry && !s.force_update && !s.moved_enough(odometry) && !s.still_update_due(scan)) {
     return s.reject(UpdateOutcome::kNotMoved, "");
+  }
   s.select_endpoints(scan);  // every reading's endpoint: only for a scan the filter runs on
 
+  s.force_update = false;
   s.run_filter(odometry);
   s.stats.outcome = s.degenerate     ? UpdateOutcome::kUnexplainedScan
                     : s.has_odometry ? UpdateOutcome::kUpdated
@@ -189,6 +191,8 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   s.stats.ms.total = ms_since(start);
   return true;
 }
+
+void Localizer::force_next_update() noexcept { impl_->force_update = true; }
 
 GlobalSetSize Localizer::global_set() const noexcept {
   const Impl& s = *impl_;

@@ -111,6 +111,7 @@ struct Localizer::Impl {
   RelocalizationSchedule schedule;           // when a lost filter re-localizes
   bool relocalize_due = false;               // re-localize before the next motion step
   std::uint64_t still_scans = 0;             // scans in a row without motion while lost
+  bool force_update = false;  // the next update runs without motion (force_next_update)
   // The verdict of judge_focus() on the clusters of estimate: made after each update's estimate
   // (where the state reads it) and held for the next update's blocked-beam filter and tempering,
   // which weigh against that same belief; made before the first update after initialization.

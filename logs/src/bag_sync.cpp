@@ -79,7 +79,26 @@ std::optional<ScanSync::Mount> ScanSync::mount(const std::string& frame) const {
   return std::nullopt;
 }
 
+// Live: a scan that waited max_wait_ behind the newest one will not be used (the newest scan
+// wins anyway), and odometry from before the oldest pending scan's bracket is never read again.
+void ScanSync::drop_stale() {
+  while (pending_.size() > 1 &&
+         pending_.front().scan.stamp < pending_.back().scan.stamp - max_wait_) {
+    if (mount(pending_.front().frame_id)) {
+      ++dropped_.no_odometry;
+    } else {
+      ++dropped_.no_transform;
+      dropped_.last_frame = pending_.front().frame_id;
+    }
+    pending_.pop_front();
+  }
+  const double keep_from =
+      pending_.empty() ? (odom_.empty() ? 0.0 : odom_.back().stamp) : pending_.front().scan.stamp;
+  while (odom_.size() > 2 && odom_[1].stamp <= keep_from) odom_.pop_front();
+}
+
 bool ScanSync::flush(std::deque<ScanFrame>& out, bool at_end) {
+  if (live_) drop_stale();
   while (!pending_.empty()) {
     ScanMessage& scan = pending_.front();
     const double t = scan.scan.stamp;
@@ -89,6 +108,12 @@ bool ScanSync::flush(std::deque<ScanFrame>& out, bool at_end) {
       if (!sensor && odom_.back().stamp < t + kTransformWait) return true;
     }
     if (odom_.empty()) return false;
+    if (live_ && !sensor) {
+      ++dropped_.no_transform;
+      dropped_.last_frame = scan.frame_id;
+      pending_.pop_front();
+      continue;
+    }
     ScanFrame frame;
     frame.stamp = t;
     frame.odometry = odometry_at(t);

@@ -39,6 +39,29 @@ class ScanSync {
   /// ready. Returns false when scans are pending at the end and there is no odometry at all.
   bool flush(std::deque<ScanFrame>& out, bool at_end);
 
+  /// Live input (the node): a scan whose frame has no transform to the base once its wait is
+  /// over is dropped instead of being paired with the laser at the base's origin, a scan still
+  /// waiting for odometry `max_wait` seconds after a newer scan is dropped, and odometry older
+  /// than every pending scan's needs is forgotten, so memory stays bounded when scans stop.
+  void go_live(double max_wait) {
+    live_ = true;
+    max_wait_ = max_wait;
+  }
+  /// What live input dropped so far.
+  struct Dropped {
+    std::size_t no_transform = 0;  ///< no transform base -> scan frame within the wait
+    std::size_t no_odometry = 0;   ///< no odometry at or after the scan's stamp within the wait
+    std::string last_frame;        ///< the frame of the last scan dropped for no transform
+  };
+  [[nodiscard]] const Dropped& dropped() const noexcept { return dropped_; }
+  /// The robot's base frame as known so far (given, or the child of the odometry frame).
+  [[nodiscard]] const std::string& base_frame() const noexcept { return base_frame_; }
+  /// Odometry (odom -> base) at `stamp`, interpolated; nullopt before any odometry arrived.
+  [[nodiscard]] std::optional<Pose2> odometry_near(double stamp) const {
+    if (odom_.empty()) return std::nullopt;
+    return odometry_at(stamp);
+  }
+
  private:
   struct Stamped {
     double stamp;
@@ -56,6 +79,7 @@ class ScanSync {
   };
 
   void push_odometry(double stamp, const Pose2& pose);
+  void drop_stale();
   [[nodiscard]] Pose2 odometry_at(double stamp) const;
   [[nodiscard]] std::optional<Mount> mount(const std::string& frame) const;
   [[nodiscard]] bool is_base(const std::string& frame) const;
@@ -67,6 +91,9 @@ class ScanSync {
   std::deque<Stamped> odom_;
   std::map<std::string, Link> links_;
   std::deque<ScanMessage> pending_;
+  bool live_ = false;
+  double max_wait_ = 0.0;
+  Dropped dropped_;
 };
 
 }  // namespace mote::logs::detail

@@ -106,7 +106,7 @@ PoseMessage decode_pose_cdr(std::string_view bytes) {
   m.stamp = h.stamp;
   m.frame_id = h.frame_id;
   m.pose = read_transform(r).pose;
-  r.skip(36, 8, "pose.covariance");
+  for (double& c : m.covariance) c = r.f64("pose.covariance");
   r.expect_end("PoseWithCovarianceStamped");
   return m;
 }

@@ -3,6 +3,7 @@
 /// The ROS 2 messages mote reads, decoded from their CDR bytes (cdr.hpp) into the same records
 /// the ROS 1 reader produces. Each throws BagDecodeError with the offset inside the message.
 
+#include <array>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,8 @@ struct PoseMessage {
   double stamp = 0.0;
   std::string frame_id;
   Pose2 pose;
+  /// The 6x6 covariance of (x, y, z, roll, pitch, yaw), row-major (x: 0, y: 7, yaw: 35).
+  std::array<double, 36> covariance{};
 };
 
 /// sensor_msgs/msg/LaserScan.

@@ -8,10 +8,11 @@
 namespace mote {
 namespace {
 
+namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-TEST(LoadConfig, Nav2DefaultsFileGivesNav2Defaults) {
+TEST(LoadConfig, Nav2FileReadsEveryKey) {
   const LoadedConfig loaded = load_config(test::project_test_data() / "nav2_params.yaml");
   const LocalizerConfig defaults;
   const LocalizerConfig& c = loaded.config;
@@ -31,9 +32,11 @@ TEST(LoadConfig, Nav2DefaultsFileGivesNav2Defaults) {
   EXPECT_DOUBLE_EQ(c.update_min_a, 0.2);
   EXPECT_DOUBLE_EQ(c.z_hit, defaults.z_hit);
   EXPECT_DOUBLE_EQ(c.sigma_hit, 0.2);
-  // Only the beam-skipping keys are worth a warning; frames, topics and use_sim_time are ROS's.
-  ASSERT_EQ(loaded.warnings.size(), 4U);
-  for (const std::string& w : loaded.warnings) EXPECT_THAT(w, HasSubstr("beam skip"));
+  // Nothing is worth a warning: do_beamskip is false and the beam_skip_* values tune what it
+  // leaves off; frames, topics and tf are the node's (read_node_params), use_sim_time ROS's.
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
+  EXPECT_TRUE(loaded.nav2_params);
+  EXPECT_EQ(loaded.source, (test::project_test_data() / "nav2_params.yaml").string());
 }
 
 TEST(LoadConfig, TunedNav2FileOverridesEveryValue) {
@@ -139,24 +142,110 @@ TEST(LocalizerConfig, DefaultsAreValid) {
   EXPECT_NO_THROW(nav2_defaults().validate());
 }
 
-// A nav2 params file means amcl's behaviour: keys it leaves out take nav2's values, not mote's
-// adaptive ones.
-TEST(LoadConfig, Nav2FileStartsFromNav2Defaults) {
-  const LocalizerConfig c = load_config(test::project_test_data() / "nav2_params.yaml").config;
-  const LocalizerConfig nav2 = nav2_defaults();
-  EXPECT_EQ(c.max_particles, nav2.max_particles);
+// Issue 46: a nav2 params file carries the robot, not amcl's algorithm. Its keys apply over
+// mote's adaptive defaults; the file as nav2 ships it differs from them only in max_particles.
+TEST(LoadConfig, Nav2FileStartsFromMoteDefaults) {
+  const LoadedConfig loaded = load_config(test::project_test_data() / "nav2_params.yaml");
+  EXPECT_EQ(loaded.defaults, ConfigDefaults::kMote);
+  LocalizerConfig expected;
+  expected.max_particles = 2000;
+  EXPECT_TRUE(loaded.config == expected) << config_yaml(loaded.config);
+  const LocalizerConfig& c = loaded.config;
+  EXPECT_DOUBLE_EQ(c.likelihood_tempering, 0.0) << "the exponent adapts";
+  EXPECT_TRUE(c.adaptive_motion_noise) << "the file's alphas are where the fit starts";
+  EXPECT_TRUE(c.unmapped_obstacle_filter);
+  EXPECT_TRUE(c.relocalize_when_lost);
+  EXPECT_EQ(c.likelihood_combination, LikelihoodCombination::kProduct);
+  // The tuned file's values apply as written over the same adaptive mechanisms.
+  const LocalizerConfig tuned =
+      load_config(test::project_test_data() / "nav2_params_tuned.yaml").config;
+  EXPECT_DOUBLE_EQ(tuned.alpha1, 0.05);
+  EXPECT_EQ(tuned.max_particles, 8000);
+  EXPECT_DOUBLE_EQ(tuned.likelihood_tempering, 0.0);
+  EXPECT_TRUE(tuned.adaptive_motion_noise);
+}
+
+// `defaults: nav2` in the file or from the caller (--nav2-defaults) stays amcl's behaviour:
+// nav2's values under the file's, formula for formula.
+TEST(LoadConfig, Nav2DefaultsAskedForGiveAmclsBehaviour) {
+  const fs::path file = test::project_test_data() / "nav2_params.yaml";
+  const LoadedConfig loaded = load_config(file, ConfigDefaults::kNav2);
+  EXPECT_EQ(loaded.defaults, ConfigDefaults::kNav2);
+  // The shipped file holds nav2's defaults, so nothing moves off them.
+  EXPECT_TRUE(loaded.config == nav2_defaults()) << config_yaml(loaded.config, nav2_defaults());
+  const LocalizerConfig& c = loaded.config;
   EXPECT_DOUBLE_EQ(c.likelihood_tempering, 1.0);
-  EXPECT_DOUBLE_EQ(c.recovery_alpha_slow, 0.0);
   EXPECT_FALSE(c.adaptive_motion_noise);
   EXPECT_FALSE(c.unmapped_obstacle_filter);
   EXPECT_DOUBLE_EQ(c.global_particles_per_bin, 0.0);
-  // amcl's formulas, not mote's: the cubed sum, a resample at every update, pf_z as z itself,
-  // unknown cells blocking rays, no re-localization.
   EXPECT_EQ(c.likelihood_combination, LikelihoodCombination::kAmclCubedSum);
   EXPECT_DOUBLE_EQ(c.resample_ess_fraction, 1.0);
   EXPECT_TRUE(c.kld_z_is_quantile);
   EXPECT_TRUE(c.unknown_cells_block_rays);
   EXPECT_FALSE(c.relocalize_when_lost);
+  // The same with `defaults: nav2` in the file, and the caller may repeat what the file says.
+  const std::string text = "amcl:\n  ros__parameters:\n    defaults: nav2\n    alpha1: 0.1\n";
+  LocalizerConfig expected = nav2_defaults();
+  expected.alpha1 = 0.1;
+  EXPECT_TRUE(parse_config(text, "n.yaml").config == expected);
+  EXPECT_TRUE(parse_config(text, "n.yaml", ConfigDefaults::kNav2).config == expected);
+  // The file and the caller naming different defaults is an error, not a silent choice.
+  try {
+    (void)parse_config("defaults: mote\n", "m.yaml", ConfigDefaults::kNav2);
+    ADD_FAILURE() << "mote's and nav2's defaults both accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("m.yaml: line 1, key 'defaults': the file asks for mote's "
+                                    "defaults, the caller for nav2's"));
+  }
+}
+
+// Keys that ask for nothing pass in silence; a value that asks for what mote does not do warns
+// with the key's line, and nav2's newer keys (Jazzy and later) are read rather than refused.
+TEST(ParseConfig, KeysAtTheirOffValueDoNotWarn) {
+  const std::string ros = "amcl:\n  ros__parameters:\n";
+  const LoadedConfig quiet = parse_config(
+      ros +
+          "    do_beamskip: false\n    beam_skip_distance: 0.5\n    random_seed: -1\n"
+          "    freespace_downsampling: false\n    introspection_mode: \"disabled\"\n"
+          "    service_introspection_mode: disabled\n    allow_parameter_qos_overrides: true\n"
+          "    initialize_at_saved_pose: false\n    saved_pose_filepath: /tmp/p\n"
+          "    first_map_only: false\n    always_reset_initial_pose: false\n"
+          "    map_topic: map\n    initial_pose: {x: 1.0, y: 2.0, z: 0.0, yaw: 0.5}\n",
+      "quiet.yaml");
+  EXPECT_TRUE(quiet.warnings.empty()) << quiet.warnings.front();
+  EXPECT_EQ(quiet.config.seed, LocalizerConfig{}.seed) << "-1 asks for no particular seed";
+  EXPECT_EQ(parse_config(ros + "    random_seed: 7\n", "s.yaml").config.seed, 7U);
+  const LoadedConfig loud = parse_config(ros +
+                                             "    do_beamskip: true\n"
+                                             "    freespace_downsampling: true\n"
+                                             "    introspection_mode: contents\n",
+                                         "loud.yaml");
+  ASSERT_EQ(loud.warnings.size(), 3U);
+  EXPECT_THAT(loud.warnings[0], HasSubstr("loud.yaml: line 3, key 'do_beamskip': beam skipping "
+                                          "is not implemented"));
+  EXPECT_THAT(loud.warnings[1], HasSubstr("line 4, key 'freespace_downsampling'"));
+  EXPECT_THAT(loud.warnings[2], HasSubstr("line 5, key 'introspection_mode'"));
+  for (const std::string& w : loud.warnings) EXPECT_THAT(w, HasSubstr("key ignored"));
+  expect_input_error("do_beamskip: maybe\n", "line 1, key 'do_beamskip': expected true or false");
+  expect_input_error("beam_skip_distance: far\n", "key 'beam_skip_distance': expected a number");
+}
+
+// The lines a run prints first say which defaults it uses and how a file's keys apply.
+TEST(ConfigSummary, SaysWhichDefaultsAndHowTheFileApplies) {
+  const fs::path file = test::project_test_data() / "nav2_params.yaml";
+  const std::vector<std::string> mote = config_summary(load_config(file));
+  ASSERT_EQ(mote.size(), 2U);
+  EXPECT_THAT(mote[0], HasSubstr("defaults: mote's adaptive ones"));
+  EXPECT_THAT(mote[0], HasSubstr("--nav2-defaults"));
+  EXPECT_THAT(mote[1], HasSubstr("a nav2 params file: its laser, robot model, particle bounds"));
+  EXPECT_THAT(mote[1], HasSubstr("where the odometry-noise fit starts"));
+  const std::vector<std::string> nav2 = config_summary(load_config(file, ConfigDefaults::kNav2));
+  ASSERT_EQ(nav2.size(), 2U);
+  EXPECT_THAT(nav2[0], HasSubstr("defaults: nav2_amcl's fixed behaviour"));
+  EXPECT_THAT(nav2[1], HasSubstr("every value as amcl reads it"));
+  EXPECT_THAT(config_summary(parse_config("seed: 3\n", "flat.yaml"))[1],
+              HasSubstr("config: flat.yaml, its keys over those defaults"));
+  EXPECT_EQ(config_summary(LoadedConfig{}).size(), 1U) << "no file, no config line";
 }
 
 TEST(ParseConfig, DefaultsKeyChoosesTheBase) {

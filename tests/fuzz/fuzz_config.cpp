@@ -1,4 +1,5 @@
-// libFuzzer target: LocalizerConfig YAML (flat amcl keys or a nav2 params file), from memory.
+// libFuzzer target: LocalizerConfig and NodeParams YAML (flat amcl keys or a nav2 params file),
+// from memory.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -6,6 +7,7 @@
 #include "fuzz_support.hpp"
 #include "mote/core/error.hpp"
 #include "mote/engine/localizer_config.hpp"
+#include "mote/engine/node_params.hpp"
 
 namespace {
 
@@ -30,5 +32,6 @@ void check(const mote::LoadedConfig& loaded) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   mote::fuzz::expect_clean("fuzz.yaml", [&] { check(mote::parse_config(text, "fuzz.yaml")); });
+  mote::fuzz::expect_clean("fuzz.yaml", [&] { (void)mote::parse_node_params(text, "fuzz.yaml"); });
   return 0;
 }

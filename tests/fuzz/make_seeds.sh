@@ -7,8 +7,8 @@ set -euo pipefail
 seeds=$1 data=$2 test_data=$3 out=$4 seed_bags=$5 seed_ros2=$6
 
 rm -rf "$out"
-mkdir -p "$out"/{map_yaml,map_image,carmen,ros_bag,tum,config,mcap,cdr,rosbag2_metadata}
-for target in map_yaml map_image carmen tum config; do
+mkdir -p "$out"/{map_yaml,map_image,carmen,ros_bag,tum,config,mcap,cdr,rosbag2_metadata,ros_map}
+for target in map_yaml map_image carmen tum config ros_map; do
   cp "$seeds/$target"/* "$out/$target/"
 done
 "$seed_bags" "$out/ros_bag"

@@ -6,6 +6,7 @@
 
 #include "catalogue.hpp"
 #include "mote/engine/localizer_config.hpp"
+#include "mote/engine/node_params.hpp"
 #include "mote/logs/tum.hpp"
 #include "mote_test/data.hpp"
 
@@ -95,7 +96,11 @@ TEST(TumCatalogue, RecordedReferenceTruncated) {
 
 // ---- configuration -------------------------------------------------------------------------
 
-void read_config(const fs::path& file) { (void)load_config(file); }
+// The filter's keys and the node's, as `mote node --config` reads one file twice.
+void read_config(const fs::path& file) {
+  (void)load_config(file);
+  (void)read_node_params(file);
+}
 
 std::vector<Case> config_cases() {
   std::vector<Case> cases{

@@ -2,6 +2,7 @@
 #include "args.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <iomanip>
@@ -133,6 +134,22 @@ void print_help(std::ostream& out, std::string_view usage_line, std::string_view
   }
   out << "  " << std::left << std::setw(26) << "--help"
       << "print this help\n";
+}
+
+std::optional<Pose2> pose_flag(const ParsedArgs& args, std::string_view name) {
+  const std::optional<std::string> text = args.text(name);
+  if (!text) return std::nullopt;
+  std::array<double, 3> v{};
+  std::size_t start = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t comma = k < 2 ? text->find(',', start) : text->size();
+    if (comma == std::string::npos) throw args.error(name, "expects X,Y,THETA");
+    const auto x = parse_real(std::string_view(*text).substr(start, comma - start));
+    if (!x) throw args.error(name, "expects three numbers X,Y,THETA, got '" + *text + "'");
+    v[k] = *x;
+    start = comma + 1;
+  }
+  return Pose2{v[0], v[1], wrap_angle(v[2])};
 }
 
 }  // namespace mote::tool

@@ -11,6 +11,8 @@
 #include <string>
 #include <string_view>
 
+#include "mote/core/pose.hpp"
+
 namespace mote::tool {
 
 /// Bad usage (unknown flag, missing value, bad number): exit status 2.
@@ -57,6 +59,10 @@ class ParsedArgs {
 
 /// Parses a finite real number (the whole text); nullopt when malformed.
 [[nodiscard]] std::optional<double> parse_real(std::string_view text);
+
+/// A pose flag "X,Y,THETA" (m, m, rad; theta wrapped); nullopt when absent, UsageError when
+/// malformed.
+[[nodiscard]] std::optional<Pose2> pose_flag(const ParsedArgs& args, std::string_view name);
 
 /// Prints "usage" and one line per flag.
 void print_help(std::ostream& out, std::string_view usage, std::string_view about,

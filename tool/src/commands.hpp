@@ -23,6 +23,10 @@ int crowd_command(std::span<char* const> args);
 int info_command(std::span<char* const> args);
 /// `mote calibrate`: sensor and motion model parameters fitted from a log.
 int calibrate_command(std::span<char* const> args);
+/// `mote node`: the live localizer on a ROS 2 graph over DDS.
+int node_command(std::span<char* const> args);
+/// `mote play`: a recorded log (and a map) published over DDS as ROS 2 topics.
+int play_command(std::span<char* const> args);
 /// `mote run`: simulate on the bundled floor plan, then replay with global initialization.
 int run_command(std::span<char* const> args);
 

@@ -30,13 +30,17 @@ constexpr std::string_view kHelp =
     "            beams, field of view and range limits, and the tf frames\n"
     "  calibrate fit the sensor and motion model parameters to a log (with or without\n"
     "            reference poses) and write config.yaml and calibration.png\n"
+    "  node      localize live on a ROS 2 graph over DDS (no ROS needed): scans, /map and /tf\n"
+    "            in; map -> odom, /amcl_pose, /particle_cloud and the state out\n"
+    "  play      publish a recorded log (ROS 2 bag or CARMEN) and a map over DDS as ROS 2\n"
+    "            topics, at the recorded rate or faster\n"
     "  run       simulate ~60 s on the bundled floor plan, replay it with global\n"
     "            initialization and print the summary (what `make run` calls)\n\n"
     "`mote COMMAND --help` lists each command's flags with units and defaults;\n"
     "`mote --version` prints the version and the kernel variant in use (MOTE_ISA).\n";
 
-constexpr std::array<std::string_view, 7> kCommands{"replay", "simulate", "kidnap",   "crowd",
-                                                    "run",    "info",     "calibrate"};
+constexpr std::array<std::string_view, 9> kCommands{"replay", "simulate",  "kidnap", "crowd", "run",
+                                                    "info",   "calibrate", "node",   "play"};
 
 // "mote COMMAND: " for a command's errors, "mote: " before there is one.
 std::string prefix(std::string_view command) {
@@ -53,6 +57,8 @@ int dispatch(std::string_view command, std::span<char* const> rest) {
   if (command == "run") return mote::tool::run_command(rest);
   if (command == "info") return mote::tool::info_command(rest);
   if (command == "calibrate") return mote::tool::calibrate_command(rest);
+  if (command == "node") return mote::tool::node_command(rest);
+  if (command == "play") return mote::tool::play_command(rest);
   if (command == "--version" || command == "version") {
     std::cout << "mote " << MOTE_VERSION << "\nkernels: " << mote::isa_description() << '\n';
     return 0;

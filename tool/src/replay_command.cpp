@@ -7,11 +7,13 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "mote/engine/node_params.hpp"
 #include "mote/maps/map_loader.hpp"
 #include "mote/replay/report.hpp"
 #include "mote/replay/verdict.hpp"
 #include "mote/replay/viewer.hpp"
 #include "progress.hpp"
+#include "run_config.hpp"
 
 namespace mote::tool {
 namespace {
@@ -23,10 +25,12 @@ constexpr std::array<FlagSpec, 25> kFlags{{
      "(required)"},
     {"out", "DIR", "output folder, created if missing (required)"},
     {"reference", "REF.tum", "reference trajectory (TUM); enables accuracy figures"},
-    {"config", "CONFIG.yaml", "LocalizerConfig YAML (flat amcl names or nav2 params)"},
+    {"config", "CONFIG.yaml",
+     "LocalizerConfig YAML (flat amcl names, or a nav2 params file as it is: its values over "
+     "mote's adaptive defaults; set_initial_pose starts at its initial_pose)"},
     {"nav2-defaults", "",
      "nav2_amcl's defaults instead of mote's adaptive ones (fixed tempering 1, no recovery, "
-     "fixed odometry noise, 500-2000 particles)"},
+     "fixed odometry noise, 500-2000 particles); with --config, under the file's keys"},
     {"model", "NAME", "likelihood_field or beam (default likelihood_field)"},
     {"particles", "N", "fixed particle count: min = max = N"},
     {"min-particles", "N", "KLD lower bound (default 500)"},
@@ -67,21 +71,6 @@ constexpr std::string_view kAbout =
     "and DIR/map.png. Exit status 0 when the run ends localized, 3 when it ends lost (the scans\n"
     "do not fit the map: a warning says so), 1 on an error, 2 on a usage error.";
 
-Pose2 parse_pose(const ParsedArgs& args) {
-  const std::string text = *args.text("init-pose");
-  std::array<double, 3> v{};
-  std::size_t start = 0;
-  for (std::size_t k = 0; k < 3; ++k) {
-    const std::size_t comma = k < 2 ? text.find(',', start) : text.size();
-    if (comma == std::string::npos) throw args.error("init-pose", "expects X,Y,THETA");
-    const auto x = parse_real(std::string_view(text).substr(start, comma - start));
-    if (!x) throw args.error("init-pose", "expects three numbers X,Y,THETA, got '" + text + "'");
-    v[k] = *x;
-    start = comma + 1;
-  }
-  return {v[0], v[1], wrap_angle(v[2])};
-}
-
 int to_int(std::int64_t v) { return static_cast<int>(v); }
 
 void apply_counts(const ParsedArgs& args, LocalizerConfig& c) {
@@ -112,7 +101,7 @@ void apply_init(const ParsedArgs& args, replay::ReplayOptions& o) {
     throw args.error("init", "and --init-pose exclude each other");
   if (args.has("init-pose")) {
     o.init = replay::InitMode::kPose;
-    o.init_pose = parse_pose(args);
+    o.init_pose = *pose_flag(args, "init-pose");
   } else if (const auto mode = args.text("init")) {
     if (*mode == "global") {
       o.init = replay::InitMode::kGlobal;
@@ -125,12 +114,24 @@ void apply_init(const ParsedArgs& args, replay::ReplayOptions& o) {
   }
 }
 
-replay::ReplayOptions replay_options(const ParsedArgs& args) {
+// nav2_amcl's set_initial_pose: the file's start pose, unless a flag or a reference says where
+// to start.
+void apply_file_start(const ParsedArgs& args, replay::ReplayOptions& o) {
+  const auto path = args.text("config");
+  if (!path || o.init != replay::InitMode::kAuto || !o.reference.empty()) return;
+  const NodeParams node = read_node_params(*path);
+  if (!node.set_initial_pose) return;
+  o.init = replay::InitMode::kPose;
+  o.init_pose = {node.initial_pose.x, node.initial_pose.y, wrap_angle(node.initial_pose.yaw)};
+}
+
+replay::ReplayOptions replay_options(const ParsedArgs& args, const LoadedConfig& config) {
   replay::ReplayOptions o;
   o.map = args.required("map");
   o.log = args.required("log");
   if (auto ref = args.text("reference")) o.reference = *ref;
   apply_init(args, o);
+  apply_file_start(args, o);
   if (auto at = args.real("kidnapped-at", -1e12, 1e12)) {
     if (o.reference.empty()) throw args.error("kidnapped-at", "needs --reference");
     o.kidnapped_at = *at;
@@ -140,18 +141,7 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
   if (auto t = args.text("odom-topic")) o.reader.odom_topic = *t;
   if (auto f = args.text("odom-frame")) o.reader.odom_frame = *f;
   if (auto f = args.text("base-frame")) o.reader.base_frame = *f;
-  if (args.has("nav2-defaults")) {
-    if (args.text("config")) {
-      throw args.error("nav2-defaults",
-                       "cannot be combined with --config: put 'defaults: nav2' in the file");
-    }
-    o.config = nav2_defaults();
-  }
-  if (auto path = args.text("config")) {
-    LoadedConfig loaded = load_config(*path);
-    for (const std::string& w : loaded.warnings) std::cerr << "mote replay: warning: " << w << '\n';
-    o.config = loaded.config;
-  }
+  o.config = config.config;
   apply_counts(args, o.config);
   if (auto m = args.real("laser-max-range", 0.01, 1e6)) {
     o.reader.carmen_max_range = static_cast<float>(*m);
@@ -159,6 +149,18 @@ replay::ReplayOptions replay_options(const ParsedArgs& args) {
   }
   apply_model(args, o.config);
   return o;
+}
+
+void print_config_summary(const char* command, const LoadedConfig& loaded,
+                          const replay::ReplayOptions& options) {
+  for (const std::string& line : config_summary(loaded))
+    std::cout << "mote " << command << ": " << line << '\n';
+  if (options.init == replay::InitMode::kPose) {
+    const Pose2& p = options.init_pose;
+    std::cout << "mote " << command << ": start: around " << p.x << ", " << p.y << ", " << p.theta
+              << " (m, m, rad)\n";
+  }
+  std::cout.flush();
 }
 
 }  // namespace
@@ -197,8 +199,11 @@ int replay_command(std::span<char* const> words) {
   }
   const std::filesystem::path out = args.required("out");
   const replay::ReportOptions report{.profile = args.has("profile")};
+  const LoadedConfig config = run_config(args, "replay");
+  replay::ReplayOptions options = replay_options(args, config);
+  if (!args.has("quiet")) print_config_summary("replay", config, options);
   const replay::ReplayResult result =
-      replay_and_report(replay_options(args), out, report, args.has("viewer"));
+      replay_and_report(std::move(options), out, report, args.has("viewer"));
   for (const std::string& w : result.reader.warnings)
     std::cerr << "mote replay: warning: " << w << '\n';
   if (!args.has("quiet")) {

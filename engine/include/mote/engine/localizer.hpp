@@ -167,6 +167,10 @@ class Localizer {
   /// scan, so re-initialize if that matters.
   bool update(const Pose2& odometry, const LaserScan& scan);
 
+  /// Makes the next update() run the filter even when the robot has moved less than
+  /// update_min_d and update_min_a (nav2's request_nomotion_update, amcl's force_update).
+  void force_next_update() noexcept;
+
   /// The current estimate (computed at the end of each update and after initialization). The
   /// reference stays valid for the Localizer's lifetime, but its contents change with the next
   /// update() or initialize*(): copy what must outlive them.

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -180,27 +181,51 @@ struct LocalizerConfig {
 /// initialization. `defaults: nav2` in a config file and `--nav2-defaults` select it.
 [[nodiscard]] LocalizerConfig nav2_defaults();
 
-/// A configuration read from a file, with the warnings it produced (unknown keys).
+/// Which defaults the keys a configuration file leaves out take.
+enum class ConfigDefaults : std::uint8_t {
+  kMote,  ///< LocalizerConfig{}: mote's adaptive mechanisms, the file's values where they start
+  kNav2,  ///< nav2_defaults(): nav2_amcl's fixed behaviour, formula for formula
+};
+
+/// A configuration read from a file, with the warnings it produced and what it started from.
 struct LoadedConfig {
   LocalizerConfig config;
+  /// Keys asking for what mote does not do (do_beamskip: true, ...), each naming file and line.
   std::vector<std::string> warnings;
+  ConfigDefaults defaults = ConfigDefaults::kMote;  ///< the base the file's keys were applied to
+  bool nav2_params = false;  ///< a nav2 or ROS amcl params file (an `amcl:` section)
+  std::string source;        ///< the file as named in messages; empty for no file
 };
 
 /// Reads a LocalizerConfig from YAML: either a flat map of the fields above (amcl names), or a
-/// nav2 params file as it is (the `amcl: ros__parameters:` section is used). Keys absent from the
-/// file keep their defaults: mote's for a flat file, nav2_defaults() for a nav2 or ROS amcl
-/// params file and for a flat file with `defaults: nav2`; unknown keys give a warning naming them;
-/// a wrong type or an out-of-range value throws InputError naming the file and key.
-[[nodiscard]] LoadedConfig load_config(const std::filesystem::path& yaml);
+/// nav2 params file as it is (the `amcl: ros__parameters:` section is used). Keys absent from
+/// the file keep mote's defaults, for a nav2 params file too: its values apply over them, the
+/// alphas and the sensor mixture as where mote's adaptive mechanisms start (the odometry-noise
+/// fit, the adaptive likelihood exponent). `defaults: nav2` in the file, or `defaults` =
+/// kNav2 from the caller, applies the keys over nav2_defaults() instead: amcl's behaviour;
+/// the file and the caller naming different defaults is an InputError. The node's keys
+/// (frames, topics, tf, start pose: node_params.hpp) and ROS plumbing (use_sim_time) pass in
+/// silence; so does a key for what mote does not do at the value that turns it off
+/// (`do_beamskip: false`), which warns at any other value. An unknown key, a wrong type or an
+/// out-of-range value throws InputError naming the file, the line and the key.
+[[nodiscard]] LoadedConfig load_config(const std::filesystem::path& yaml,
+                                       std::optional<ConfigDefaults> defaults = std::nullopt);
 
 /// As load_config, from YAML text; `name` stands for the file in messages.
-[[nodiscard]] LoadedConfig parse_config(const std::string& yaml_text, const std::string& name);
+[[nodiscard]] LoadedConfig parse_config(const std::string& yaml_text, const std::string& name,
+                                        std::optional<ConfigDefaults> defaults = std::nullopt);
+
+/// What a run uses, in the lines it prints first: which defaults, and for a file, how its keys
+/// apply ("defaults: mote's adaptive ones ...", "config: FILE, a nav2 params file: ...").
+/// Without a file (`loaded.source` empty), the defaults line alone.
+[[nodiscard]] std::vector<std::string> config_summary(const LoadedConfig& loaded);
 
 /// The name load_config reads each model by (the first of its spellings).
 [[nodiscard]] const char* name_of(LaserModel model);
 [[nodiscard]] const char* name_of(OdomModel model);
 [[nodiscard]] const char* name_of(LikelihoodCombination combination);
 [[nodiscard]] const char* name_of(RayCasting casting);
+[[nodiscard]] const char* name_of(ConfigDefaults defaults);  ///< "mote" or "nav2"
 
 /// The flat YAML (one `key: value` line per field, load_config's names) of every field of
 /// `config` that differs from `base`, doubles written to round-trip. Against mote's defaults
