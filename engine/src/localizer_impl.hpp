@@ -63,8 +63,8 @@ struct Localizer::Impl {
   [[nodiscard]] bool still_update_due(const LaserScan& scan);
   void update_estimate();
   // Whether the estimate's clusters are focused (BlockedBeamFilter::focused), judged once per
-  // update: the state's tracking test, settled_once, the blocked-beam filter and tracking
-  // tempering all read this one verdict.
+  // update: the state's tracking test, the re-localization schedule, the blocked-beam filter and
+  // tracking tempering all read this one verdict.
   void judge_focus();
   // The best hypothesis matched to the map with every valid reading, and the state it gives.
   void judge_localization();
