@@ -15,6 +15,9 @@ constexpr double kDampingGrowth = 10.0;
 // Net rejected steps (each damps the next tenfold, each accepted one undoes one) after which
 // the search stops: the eighth rejection ends it.
 constexpr int kMaxRejections = 8;
+// Share of a cell under which the last accepted step of a search stopped by its iteration cap
+// counts as converged (at the field's resolution).
+constexpr double kCrawl = 0.1;
 
 // Endpoint e (robot frame) at grid-frame pose p, and its derivative by theta.
 struct Placed {
@@ -147,7 +150,8 @@ ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start) c
   if (ends.empty() || !is_finite(start)) return out;
   Pose2 pose = between(field_.origin(), start);  // grid frame
   Normal at = normal_equations(ends, pose, true);
-  int level = 0;  // damping = kInitialDamping * kDampingGrowth^level
+  int level = 0;           // damping = kInitialDamping * kDampingGrowth^level
+  double last_step = 0.0;  // length of the last accepted step
   for (; out.iterations < config_.max_iterations; ++out.iterations) {
     const double damping = kInitialDamping * std::pow(kDampingGrowth, level);
     Eigen::Matrix3d a = at.h;
@@ -167,6 +171,7 @@ ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start) c
       continue;
     }
     const bool undamped = level == 0;
+    last_step = std::hypot(step.x(), step.y()) + std::abs(step.z());
     level = std::max(level - 1, 0);
     pose = next;
     at = there;
@@ -176,6 +181,14 @@ ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start) c
       out.converged = true;
       break;
     }
+  }
+  // At a kink of the interpolated field (a wall drawn as a staircase) the search crawls between
+  // damped steps until the iteration cap, at a minimum but for a fraction of a cell: on
+  // edmonton a quarter of the matches, their last accepted step at most 2.4 mm (5 cm cells).
+  // Refusing them cost 18 mm of ATE there.
+  if (!out.converged && out.iterations == config_.max_iterations && last_step > 0.0 &&
+      last_step < kCrawl * field_.resolution()) {
+    out.converged = true;
   }
   out.pose = compose(field_.origin(), pose);
   out.hit_share = hit_share(ends, out.pose);

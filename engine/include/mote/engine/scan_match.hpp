@@ -49,9 +49,11 @@ struct ScanMatch {
   /// Share of the endpoints within `scale` of a mapped obstacle's surface at the refined pose.
   double hit_share = 0.0;
   int iterations = 0;  ///< Gauss-Newton steps taken
-  /// Whether the search converged: an undamped step, or the shortest damped one, fell below
-  /// min_step. False when it stopped at max_iterations or on a non-finite step (and when there
-  /// was nothing to match): the pose is then where the search stood, not a minimum.
+  /// Whether the search converged: an undamped step, or a rejected one, fell below min_step,
+  /// or it reached max_iterations crawling (its last accepted step under a tenth of a cell, at
+  /// a kink of the interpolated field). False when it stopped at max_iterations still moving,
+  /// at the damping cap or on a non-finite step (and when there was nothing to match): the pose
+  /// is then where the search stood, not a minimum.
   bool converged = false;
 };
 
