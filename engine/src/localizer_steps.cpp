@@ -281,14 +281,16 @@ bool fixed(const ScanMatch& m) {
 
 // A refinement farther than this from the belief, in their combined covariance (squared
 // Mahalanobis distance), is one chance in a thousand when both describe the same pose: the
-// 0.999 quantile of 3 F(3, 5), a multivariate t with 5 degrees of freedom, not of chi-square
+// 0.999 quantile of 3 F(3, 8), a multivariate t with 8 degrees of freedom, not of chi-square
 // with 3 (16.27). The cloud's covariance is an estimate from a few hundred resampled particles
 // and its mean lags the motion, so the distances have a heavier tail than a Gaussian's: while
 // tracking, the chi-square gate refused 0.5-1.6 % of the updates on the logs with reference
 // poses and a quarter or more on Wean and DIS, whose maps are older than their logs (issue 51),
-// where its nominal share is 0.1 %; the largest distance on any shared log is 58,
-// and a match a crowd carried half a metre off a belief a few centimetres wide is in the hundreds.
-constexpr double kBeliefGate = 99.6;
+// where its nominal share is 0.1 %; this one refuses 0-0.26 % of them and 2 % on Wean
+// (RefinedGateOnLogs, whose bound of twice the nominal share Belgioioso and Wean still miss).
+// Looser gates let the Intel crowd's matches through: 5 degrees of freedom (99.6) met the
+// bound on every log but took the crowd's ATE to 0.125 m, 6 (71.1) to 0.101 m; here 0.092 m.
+constexpr double kBeliefGate = 47.5;
 
 // Whether the belief supports the match: the squared Mahalanobis distance between the match and
 // the hypothesis it started from, in their summed covariances, within kBeliefGate. A crowd
