@@ -129,7 +129,7 @@ TEST(Node, AMapOfZeroSizeOrAbsurdSizeAndANanInitialPoseAreRefused) {
   o.map_file = kFloorplan;
   Node node(std::move(o));
   const Robot robot(domain);
-  ASSERT_TRUE(eventually([&] { return robot.map.matched() == 1; }));
+  ASSERT_TRUE(eventually([&] { return robot.map.matched() == 1 && node.counters().maps == 1; }));
   // A 1 x 1 map whose header then claims 100000 x 100000 cells: refused before allocating.
   const OccupancyGrid one(1, 1, 0.05, Pose2{}, {CellState::kFree});
   std::string huge = encode_occupancy_grid(Header{to_stamp(1.0), "map"}, one);
@@ -186,6 +186,38 @@ TEST(Node, ScansBeforeAnyMapAreCountedAndTheWarningSaysNoMapYet) {
   drive_until(
       robot, node, [](const NodeCounters& c) { return c.updates >= 1; }, t);
   EXPECT_EQ(node.counters().maps, 1U);
+}
+
+TEST(Node, ASecondLaserOnATopicOfItsOwnUpdatesWithItsOwnMounting) {
+  const int domain = use_loopback_domain();
+  Lines lines;
+  NodeOptions o = options(domain, lines);
+  o.map_file = kFloorplan;
+  o.scan_topics = {"front/scan", "rear/scan"};
+  Node node(std::move(o));
+  const Robot robot(domain);
+  const RawWriter rear(robot.participant, "/rear/scan", "sensor_msgs/msg/LaserScan",
+                       detail::kSensorQos);
+  const TransformStamped mount{{to_stamp(0.0), "base_link"}, "rear_laser", Pose2{-0.2, 0, 3.1}};
+  robot.tf_static.write(encode_tf(std::span(&mount, 1)));
+  ASSERT_TRUE(eventually([&] { return rear.matched() == 1; }));
+  double t = 0.0;
+  ASSERT_TRUE(eventually([&] {
+    t += 0.1;
+    const TransformStamped odom{{to_stamp(t), "odom"}, "base_link", Pose2{0.2 * t, 0.0, 0.0}};
+    robot.tf.write(encode_tf(std::span(&odom, 1)));
+    LaserScan s;
+    s.stamp = t;
+    s.angle_min = -1.5F;
+    s.angle_increment = 0.05F;
+    s.range_min = 0.1F;
+    s.range_max = 10.0F;
+    s.ranges.assign(61, 2.0F);
+    rear.write(encode_laser_scan(to_laser_scan_message(s, "rear_laser")));
+    std::this_thread::sleep_for(5ms);
+    return node.counters().updates >= 2;
+  })) << lines.text;
+  EXPECT_EQ(node.counters().dropped_no_transform, 0U);
 }
 
 TEST(Node, AnInitialPoseRestartsTheFilterThereAndStopEndsWithinASecond) {
