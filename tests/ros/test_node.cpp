@@ -40,8 +40,8 @@ struct Robot {
     const TransformStamped t{{to_stamp(0.0), "base_link"}, "laser", Pose2{0.1, 0.0, 0.0}};
     tf_static.write(encode_tf(std::span(&t, 1)));
   }
-  // Odometry at t, then a scan at t from `frame` (every beam 2 m: a wall all around).
-  void drive(double t, const std::string& frame = "laser") const {
+  // Odometry at t, then a scan at t from `frame` on `laser` (every beam 2 m: a wall all around).
+  void drive(double t, const std::string& frame = "laser", const RawWriter* laser = nullptr) const {
     const TransformStamped odom{{to_stamp(t), "odom"}, "base_link", Pose2{0.2 * t, 0.0, 0.0}};
     tf.write(encode_tf(std::span(&odom, 1)));
     LaserScan s;
@@ -51,7 +51,7 @@ struct Robot {
     s.range_min = 0.1F;
     s.range_max = 10.0F;
     s.ranges.assign(61, 2.0F);
-    scan.write(encode_laser_scan(to_laser_scan_message(s, frame)));
+    (laser != nullptr ? *laser : scan).write(encode_laser_scan(to_laser_scan_message(s, frame)));
   }
 
   detail::Participant participant;
@@ -203,17 +203,7 @@ TEST(Node, ASecondLaserOnATopicOfItsOwnUpdatesWithItsOwnMounting) {
   ASSERT_TRUE(eventually([&] { return rear.matched() == 1; }));
   double t = 0.0;
   ASSERT_TRUE(eventually([&] {
-    t += 0.1;
-    const TransformStamped odom{{to_stamp(t), "odom"}, "base_link", Pose2{0.2 * t, 0.0, 0.0}};
-    robot.tf.write(encode_tf(std::span(&odom, 1)));
-    LaserScan s;
-    s.stamp = t;
-    s.angle_min = -1.5F;
-    s.angle_increment = 0.05F;
-    s.range_min = 0.1F;
-    s.range_max = 10.0F;
-    s.ranges.assign(61, 2.0F);
-    rear.write(encode_laser_scan(to_laser_scan_message(s, "rear_laser")));
+    robot.drive(t += 0.1, "rear_laser", &rear);
     std::this_thread::sleep_for(5ms);
     return node.counters().updates >= 2;
   })) << lines.text;
