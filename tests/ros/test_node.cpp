@@ -188,6 +188,21 @@ TEST(Node, ScansBeforeAnyMapAreCountedAndTheWarningSaysNoMapYet) {
   EXPECT_EQ(node.counters().maps, 1U);
 }
 
+TEST(Node, FirstMapOnlyKeepsTheFirstMapAndSaysSo) {
+  const int domain = use_loopback_domain();
+  Lines lines;
+  NodeOptions o = options(domain, lines);
+  o.map_file = kFloorplan;
+  o.first_map_only = true;
+  Node node(std::move(o));
+  const Robot robot(domain);
+  ASSERT_TRUE(eventually([&] { return robot.map.matched() == 1 && node.counters().maps == 1; }));
+  robot.map.write(encode_occupancy_grid(Header{to_stamp(1.0), "map"}, load_map(kFloorplan)));
+  ASSERT_TRUE(eventually([&] { return lines.has("first_map_only keeps the first one"); }))
+      << lines.text;
+  EXPECT_EQ(node.counters().maps, 1U);
+}
+
 TEST(Node, ASecondLaserOnATopicOfItsOwnUpdatesWithItsOwnMounting) {
   const int domain = use_loopback_domain();
   Lines lines;
