@@ -88,6 +88,11 @@ void Localizer::Impl::start_fresh() {
   stats.particles = store.size();
   initialized = true;
   executor.run([&] { update_estimate(); });
+  // No scan has been matched to the new belief yet: the refined estimate is its best hypothesis
+  // without a covariance, not the previous run's (which a live node would publish after an
+  // /initialpose), and the state is the monitor's fresh one.
+  estimate.refined = ScanMatch{.pose = estimate.best().mean};
+  stats.state = monitor.state();
 }
 
 void Localizer::initialize(const Pose2& mean, const Eigen::Matrix3d& covariance) {

@@ -159,6 +159,7 @@ bool Localizer::Impl::jumped(const Pose2& odometry) const {
 bool Localizer::Impl::reset_odometry(const Pose2& odometry) {
   const Pose2 delta = between(last_odometry, odometry);
   last_odometry = odometry;  // later steps count from here
+  last_fix = {};             // no noise-fit residual pairs the new origin with a fix from before
   return reject(UpdateOutcome::kRejectedOdometry,
                 "odometry jumped " + std::to_string(std::hypot(delta.x, delta.y)) +
                     " m since the last update (more than odom_jump_max_d): taken as an "

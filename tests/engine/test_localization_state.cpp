@@ -38,7 +38,10 @@ TEST(LocalizationMonitor, SmoothsTheMisfitAndNamesTheState) {
   EXPECT_EQ(m.update(nan, nan, 1.0), LocalizationState::kLost);
   EXPECT_NEAR(m.smoothed(), 0.8, 1e-12);
   EXPECT_EQ(m.update(0.0, 1.0, 1.0), LocalizationState::kTracking);  // 0.8 -> 0.4
-  m.reset();
+  m.reset();  // forgets the state too: a scan with no endpoint next says nothing of the past
+  EXPECT_EQ(m.state(), LocalizationState::kUncertain);
+  EXPECT_EQ(m.smoothed(), 0.0);
+  EXPECT_EQ(m.update(nan, nan, 1.0), LocalizationState::kUncertain);
   EXPECT_EQ(m.update(0.9, 0.2, 1.0), LocalizationState::kLost);  // starts afresh at 1.7
   EXPECT_STREQ(name_of(LocalizationState::kUncertain), "uncertain");
 }
@@ -143,6 +146,32 @@ TEST_F(StateOnIntel, RelocalizationIsBitIdenticalForAnyThreadCount) {
   const std::vector<float> two = run(2);
   ASSERT_EQ(one.size(), two.size());
   EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)), 0);
+}
+
+// After initialize*() the estimate and the state are the new belief's, nothing of the previous
+// run's: a live node publishes them right after an /initialpose.
+TEST_F(StateOnIntel, InitializationForgetsTheRefinedPoseAndTheState) {
+  LocalizerConfig c = config();
+  Localizer filter(*map_, c);
+  filter.initialize(kIntelStart, start_covariance());
+  const auto near = [](const Pose2& a, const Pose2& b) {
+    return std::hypot(a.x - b.x, a.y - b.y) < 0.05;
+  };
+  EXPECT_TRUE(near(filter.estimate().refined.pose, kIntelStart))
+      << filter.estimate().refined.pose.x << " " << filter.estimate().refined.pose.y;
+  test::Drive drive(*map_, kIntelStart, 7);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 5; ++k) drive.feed(filter);
+  ASSERT_EQ(filter.last_update().state, LocalizationState::kTracking);
+  const Pose2 elsewhere{5.0, 2.0, 1.0};
+  filter.initialize(elsewhere, start_covariance());
+  EXPECT_TRUE(near(filter.estimate().refined.pose, elsewhere))
+      << filter.estimate().refined.pose.x << " " << filter.estimate().refined.pose.y;
+  EXPECT_TRUE(filter.estimate().refined.covariance.isZero());
+  EXPECT_EQ(filter.last_update().state, LocalizationState::kUncertain);
+  filter.initialize_global();
+  EXPECT_EQ(filter.last_update().state, LocalizationState::kUncertain);
+  EXPECT_TRUE(near(filter.estimate().refined.pose, filter.estimate().best().mean));
 }
 
 TEST_F(StateOnIntel, LostOnAnotherBuildingsMap) {

@@ -61,8 +61,13 @@ class LocalizationMonitor {
   /// One update's see-through and hit shares (at the refined best pose) and the heaviest
   /// cluster's weight; a NaN share (no reading with an endpoint) leaves the state as it was.
   LocalizationState update(double see_through, double hit_share, double best_weight) noexcept;
-  /// Forgets the average (after initialization or re-localization).
-  void reset() noexcept { started_ = false; }
+  /// Forgets the average and the state (after initialization or re-localization): the next
+  /// scan starts both afresh, and until then the state is uncertain.
+  void reset() noexcept {
+    started_ = false;
+    smoothed_ = 0.0;
+    state_ = LocalizationState::kUncertain;
+  }
 
   [[nodiscard]] double smoothed() const noexcept { return smoothed_; }
   [[nodiscard]] LocalizationState state() const noexcept { return state_; }
