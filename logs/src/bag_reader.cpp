@@ -67,6 +67,18 @@ class BagSource final : public ScanSource {
     throw InputError(name_, "byte " + std::to_string(offset), problem);
   }
 
+  /// Strict mode, a record that does not decode: in a bag whose header places the index past
+  /// the file's end, or that was never closed (index at 0), the likely cause is a file cut short,
+  /// which --lenient reads up to the cut (as the MCAP reader does for a cut file).
+  [[noreturn]] void fail_record(std::uint64_t offset, const std::string& problem) const {
+    if (index_pos_ != 0 && index_pos_ <= file_.size()) fail(offset, problem);
+    fail(offset,
+         problem + " (the bag's index " +
+             (index_pos_ == 0 ? std::string("was never written")
+                              : "lies past its end, at byte " + std::to_string(index_pos_)) +
+             ": cut short? --lenient reads the scans before the cut)");
+  }
+
   /// Lenient mode: counts a skipped record; the first one's message reads like an InputError's.
   void skip(std::uint64_t bytes, const std::string& place, const std::string& problem) {
     ++stats_.records_skipped;
@@ -82,7 +94,7 @@ class BagSource final : public ScanSource {
     if (index_pos_ > file_.size() && stats_.records_skipped == 0) {
       const std::string problem = "the file ends before byte " + std::to_string(index_pos_) +
                                   ", where its header places the index: the bag is cut short";
-      if (!options_.lenient) fail(file_.size(), problem);
+      if (!options_.lenient) fail(file_.size(), problem + " (--lenient reads the scans before it)");
       skip(index_pos_ - file_.size(), "byte " + std::to_string(file_.size()), problem);
     }
     if (!sync_.flush(ready_, true)) {
@@ -156,7 +168,7 @@ class BagSource final : public ScanSource {
         if (record->header.op() == BagOp::kConnection) add_connection(*record);
       } catch (const BagDecodeError& e) {
         const std::uint64_t at = record ? record->offset + e.offset : e.offset;
-        if (!options_.lenient) fail(at, e.problem);
+        if (!options_.lenient) fail_record(at, e.problem);
         const std::uint64_t from = record ? record->offset : e.offset;
         skip(file_.size() - std::min(from, file_.size()), "byte " + std::to_string(at), e.problem);
         return false;
@@ -169,7 +181,7 @@ class BagSource final : public ScanSource {
       chunk_ = detail::decompress_chunk(record.header.get("compression"), record.data,
                                         record.header.u32("size"), options_.max_chunk_bytes);
     } catch (const BagDecodeError& e) {
-      if (!options_.lenient) fail(record.offset, "chunk: " + e.problem);
+      if (!options_.lenient) fail_record(record.offset, "chunk: " + e.problem);
       skip(file_.position() - record.offset, "byte " + std::to_string(record.offset),
            "chunk: " + e.problem);
       return;

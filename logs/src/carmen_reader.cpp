@@ -131,7 +131,7 @@ class CarmenSource final : public ScanSource {
         detail::LineFields fields(line, file_, line_no_);
         if (auto frame = parse(fields)) return frame;
       } catch (const InputError& e) {
-        if (!options_.lenient) throw;
+        if (!options_.lenient) throw_with_cut_hint(e);
         ++stats_.records_skipped;
         stats_.bytes_skipped += line.size() + (in_.eof() ? 0 : 1);
         if (stats_.first_error.empty()) stats_.first_error = e.what();
@@ -139,6 +139,18 @@ class CarmenSource final : public ScanSource {
     }
     check_end();
     return std::nullopt;
+  }
+
+  /// Strict mode: a malformed last line that ends without its newline is most likely a file cut
+  /// short (a copy or recording interrupted), which --lenient reads up to the cut, as the MCAP
+  /// reader does for a cut file; anything else is rethrown as it is.
+  [[noreturn]] void throw_with_cut_hint(const InputError& e) const {
+    if (!in_.eof()) throw e;
+    throw InputError(e.file(), e.place(),
+                     e.problem() +
+                         " (the file ends inside this line: cut short? --lenient reads "
+                         "the " +
+                         std::to_string(frames_) + " scans before it)");
   }
 
   /// One line: a frame for scan messages, nullopt for everything else.

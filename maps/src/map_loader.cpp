@@ -114,6 +114,13 @@ MapImage read_map_image(const std::filesystem::path& image) {
 
 OccupancyGrid load_map(const std::filesystem::path& yaml) {
   const MapMetadata meta = read_map_metadata(yaml);
+  // A wrong `image:` is the YAML's mistake: name the YAML and its key, not only the missing path.
+  if (!std::filesystem::is_regular_file(meta.image)) {
+    throw InputError(yaml.string(), "key 'image'",
+                     "cannot open map image " + meta.image.string() + " (" +
+                         (std::filesystem::exists(meta.image) ? "not a file" : "no such file") +
+                         "; a relative path is taken from the YAML file's folder)");
+  }
   const MapImage image = read_map_image(meta.image);
   return grid_from_image(image, meta, meta.image.string());
 }

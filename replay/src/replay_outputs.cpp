@@ -11,11 +11,18 @@
 
 namespace mote::replay {
 
-void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,
-                          const ReportOptions& options) {
+void make_output_folder(const std::filesystem::path& dir) {
   std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {
+    throw Error(dir.string() + ": the output folder is a file; name a folder (created if missing)");
+  }
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir.string() + ": cannot create output folder: " + ec.message());
+}
+
+void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,
+                          const ReportOptions& options) {
+  make_output_folder(dir);
   std::ofstream json(dir / "report.json");
   write_report_json(json, result, options);
   if (!json.good()) throw Error((dir / "report.json").string() + ": cannot write");

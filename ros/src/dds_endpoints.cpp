@@ -51,7 +51,10 @@ dds_entity_t make_topic(const Participant& p, std::string_view ros_topic, std::s
 
 // The fully qualified ROS name, as ROS 2 prints it ("scan" -> "/scan").
 std::string qualified(std::string_view ros_topic) {
-  return ros_topic.starts_with('/') ? std::string(ros_topic) : "/" + std::string(ros_topic);
+  std::string name;
+  if (!ros_topic.starts_with('/')) name.push_back('/');
+  name.append(ros_topic);
+  return name;
 }
 
 }  // namespace

@@ -19,11 +19,17 @@ double ms_since(Clock::time_point t) {
 
 }  // namespace
 
+std::uint64_t Node::Impl::counts_maps() const {
+  const std::lock_guard lock(mutex);
+  return counts.maps;
+}
+
 std::optional<StartPose> Node::Impl::start_pose_for_new_map() const {
   {
     const std::lock_guard lock(mutex);
     // A map that replaces another keeps a belief that knew where it was.
-    if (counts.maps > 0 && counts.state == LocalizationState::kTracking) {
+    if (counts.maps > 0 && counts.state == LocalizationState::kTracking &&
+        !options.always_reset_initial_pose) {
       return StartPose{counts.pose, options.initial_covariance, "the last pose"};
     }
     if (counts.maps > 0) return std::nullopt;

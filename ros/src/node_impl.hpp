@@ -60,6 +60,7 @@ struct Node::Impl {
   void hand_over_ready_scans();
   void warn_about_silence();
   void prepare_map(OccupancyGrid grid, std::string source);
+  [[nodiscard]] std::uint64_t counts_maps() const;
 
   // The filter thread (node_filter.cpp).
   void filter_loop();

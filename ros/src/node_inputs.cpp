@@ -101,6 +101,11 @@ void Node::Impl::take_scans(const detail::RawReader& reader) {
 void Node::Impl::take_maps() {
   std::vector<std::string> maps = map_reader.take();
   if (maps.empty()) return;
+  if (options.first_map_only && (map_builder.joinable() || counts_maps() > 0)) {
+    warnings.warn("first map only", "a map on " + map_reader.topic() +
+                                        " ignored: first_map_only keeps the first one");
+    return;
+  }
   try {  // only the newest map matters
     MapMessage m = decode_occupancy_grid(maps.back(), map_reader.topic());
     prepare_map(std::move(m.grid), map_reader.topic());

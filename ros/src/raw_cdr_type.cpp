@@ -140,6 +140,10 @@ const ddsi_serdata_ops kSampleOps = {
     .free = sample_free,
     .print = sample_print,
     .get_keyhash = sample_keyhash,
+#ifdef DDS_HAS_SHM  // Debian's Cyclone is built with iceoryx support; mote does not use it
+    .get_sample_size = nullptr,
+    .from_iox_buffer = nullptr,
+#endif
 };
 
 void type_free(ddsi_sertype* t) {

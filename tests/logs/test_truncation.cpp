@@ -102,6 +102,65 @@ TEST(Truncation, SmallBagCutAtEveryByteNeverCrashes) {
   }
 }
 
+/// The message of the InputError strict reading of `bytes` (written to `path`) throws.
+std::string strict_error(const std::filesystem::path& path, const std::string& bytes) {
+  test::write_bytes(path, bytes);
+  try {
+    auto source = open_scan_log(path, ReaderOptions{});
+    while (source->next()) {
+    }
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string carmen_scan(int stamp) {
+  std::string line = "FLASER 180";
+  for (int i = 0; i < 180; ++i) line += " 1.5";
+  return line + " 1 2 0.5 1 2 0.5 " + std::to_string(stamp) + " host " + std::to_string(stamp) +
+         "\n";
+}
+
+// Issue 48: a .clf cut inside its last line (a copy or recording interrupted) says so and names
+// --lenient, as a cut MCAP file does; a malformed line that is not the cut one does not.
+TEST(Truncation, ACutCarmenLogSaysCutShortAndNamesLenient) {
+  const std::string log = "ODOM 1 2 0.5 0 0 0 1 host 1\n" + carmen_scan(1) + carmen_scan(2) +
+                          carmen_scan(3) + carmen_scan(4);
+  const auto path = test::temp_dir() / "cut.clf";
+  const std::string cut = strict_error(path, log.substr(0, log.size() - 500));
+  EXPECT_NE(cut.find(path.string() + ": line 5: FLASER/RLASER ranges and poses: expected"),
+            std::string::npos)
+      << cut;
+  EXPECT_NE(cut.find("(the file ends inside this line: cut short? --lenient reads the 3 scans "
+                     "before it)"),
+            std::string::npos)
+      << cut;
+  const std::string malformed = strict_error(path, log.substr(0, log.size() - 500) + "\n");
+  EXPECT_NE(malformed.find("line 5: FLASER/RLASER"), std::string::npos) << malformed;
+  EXPECT_EQ(malformed.find("cut short"), std::string::npos) << malformed;
+}
+
+// Issue 48: a .bag cut in a record (its header places the index past the cut) says so and names
+// --lenient, which reads the messages before the cut.
+TEST(Truncation, ACutBagSaysCutShortAndNamesLenient) {
+  test::BagBuilder b;
+  b.connection(0, "/scan", "sensor_msgs/LaserScan");
+  b.connection(1, "/odom", "nav_msgs/Odometry");
+  for (std::uint32_t s = 1; s < 20; ++s) {
+    b.message(1, s, 0, test::odom_message(s, 0, 0.1 * s, 0.0, 0.0));
+    b.message(0, s, 0, test::scan_message(s, 0, "", std::vector<float>(30, 2.0F)));
+  }
+  const std::string bag = b.finish("none");
+  const auto path = test::temp_dir() / "cut.bag";
+  EXPECT_EQ(strict_error(path, bag), "");
+  const std::string cut = strict_error(path, bag.substr(0, bag.size() / 2));
+  EXPECT_NE(cut.find(path.string() + ": byte "), std::string::npos) << cut;
+  EXPECT_NE(cut.find("lies past its end, at byte "), std::string::npos) << cut;
+  EXPECT_NE(cut.find(": cut short? --lenient reads the scans before the cut)"), std::string::npos)
+      << cut;
+}
+
 TEST(Corruption, FlippedBytesGiveInputErrorsOrData) {
   MOTE_REQUIRE_DATA(path, "wean/robotdata1.clf");
   const std::string log = test::read_bytes(path);

@@ -93,6 +93,15 @@ TEST_F(MapErrors, ImageFiles) {
   const fs::path y = yaml("image", "image: map.pgm");
   const fs::path img = dir_ / "map.pgm";
   expect_error(y, img, "cannot open map image");
+  // Issue 48: a wrong `image:` is the YAML's mistake, so the error names the YAML and the key.
+  expect_error(y, y,
+               "map.yaml: key 'image': cannot open map image " + img.string() +
+                   " (no such file; a relative path is taken from the YAML file's folder)");
+  fs::create_directories(dir_ / "folder.pgm");
+  expect_error(
+      yaml("image", "image: folder.pgm"), y,
+      "key 'image': cannot open map image " + (dir_ / "folder.pgm").string() + " (not a file;");
+  (void)yaml("image", "image: map.pgm");
   write("map.pgm", "GIF89a");
   expect_error(y, img, "byte 0: unknown image format");
   write("map.pgm", "P7\n2 2\n255\n");
@@ -185,7 +194,8 @@ void check_corruptions(const fs::path& file, const std::string& valid, std::size
 }
 
 TEST_F(MapErrors, TruncatedOrCorruptedImages) {
-  const std::string pgm = "P5\n# c\n4 3\n255\n"s + std::string(12, '\x7f');
+  std::string pgm = "P5\n# c\n4 3\n255\n";
+  pgm.append(12, '\x7f');  // appended, not `+`: GCC 12 warns on the inlined copy (-Warray-bounds)
   check_corruptions(dir_ / "c.pgm", pgm, pgm.size());
   check_corruptions(dir_ / "c.pgm", "P2\n4 1\n65535\n1 22 333 4444\n"s, 23);
   const std::string png = small_png();

@@ -40,8 +40,8 @@ struct Robot {
     const TransformStamped t{{to_stamp(0.0), "base_link"}, "laser", Pose2{0.1, 0.0, 0.0}};
     tf_static.write(encode_tf(std::span(&t, 1)));
   }
-  // Odometry at t, then a scan at t from `frame` (every beam 2 m: a wall all around).
-  void drive(double t, const std::string& frame = "laser") const {
+  // Odometry at t, then a scan at t from `frame` on `laser` (every beam 2 m: a wall all around).
+  void drive(double t, const std::string& frame = "laser", const RawWriter* laser = nullptr) const {
     const TransformStamped odom{{to_stamp(t), "odom"}, "base_link", Pose2{0.2 * t, 0.0, 0.0}};
     tf.write(encode_tf(std::span(&odom, 1)));
     LaserScan s;
@@ -51,7 +51,7 @@ struct Robot {
     s.range_min = 0.1F;
     s.range_max = 10.0F;
     s.ranges.assign(61, 2.0F);
-    scan.write(encode_laser_scan(to_laser_scan_message(s, frame)));
+    (laser != nullptr ? *laser : scan).write(encode_laser_scan(to_laser_scan_message(s, frame)));
   }
 
   detail::Participant participant;
@@ -129,7 +129,7 @@ TEST(Node, AMapOfZeroSizeOrAbsurdSizeAndANanInitialPoseAreRefused) {
   o.map_file = kFloorplan;
   Node node(std::move(o));
   const Robot robot(domain);
-  ASSERT_TRUE(eventually([&] { return robot.map.matched() == 1; }));
+  ASSERT_TRUE(eventually([&] { return robot.map.matched() == 1 && node.counters().maps == 1; }));
   // A 1 x 1 map whose header then claims 100000 x 100000 cells: refused before allocating.
   const OccupancyGrid one(1, 1, 0.05, Pose2{}, {CellState::kFree});
   std::string huge = encode_occupancy_grid(Header{to_stamp(1.0), "map"}, one);
@@ -186,6 +186,43 @@ TEST(Node, ScansBeforeAnyMapAreCountedAndTheWarningSaysNoMapYet) {
   drive_until(
       robot, node, [](const NodeCounters& c) { return c.updates >= 1; }, t);
   EXPECT_EQ(node.counters().maps, 1U);
+}
+
+TEST(Node, FirstMapOnlyKeepsTheFirstMapAndSaysSo) {
+  const int domain = use_loopback_domain();
+  Lines lines;
+  NodeOptions o = options(domain, lines);
+  o.map_file = kFloorplan;
+  o.first_map_only = true;
+  Node node(std::move(o));
+  const Robot robot(domain);
+  ASSERT_TRUE(eventually([&] { return robot.map.matched() == 1 && node.counters().maps == 1; }));
+  robot.map.write(encode_occupancy_grid(Header{to_stamp(1.0), "map"}, load_map(kFloorplan)));
+  ASSERT_TRUE(eventually([&] { return lines.has("first_map_only keeps the first one"); }))
+      << lines.text;
+  EXPECT_EQ(node.counters().maps, 1U);
+}
+
+TEST(Node, ASecondLaserOnATopicOfItsOwnUpdatesWithItsOwnMounting) {
+  const int domain = use_loopback_domain();
+  Lines lines;
+  NodeOptions o = options(domain, lines);
+  o.map_file = kFloorplan;
+  o.scan_topics = {"front/scan", "rear/scan"};
+  Node node(std::move(o));
+  const Robot robot(domain);
+  const RawWriter rear(robot.participant, "/rear/scan", "sensor_msgs/msg/LaserScan",
+                       detail::kSensorQos);
+  const TransformStamped mount{{to_stamp(0.0), "base_link"}, "rear_laser", Pose2{-0.2, 0, 3.1}};
+  robot.tf_static.write(encode_tf(std::span(&mount, 1)));
+  ASSERT_TRUE(eventually([&] { return rear.matched() == 1; }));
+  double t = 0.0;
+  ASSERT_TRUE(eventually([&] {
+    robot.drive(t += 0.1, "rear_laser", &rear);
+    std::this_thread::sleep_for(5ms);
+    return node.counters().updates >= 2;
+  })) << lines.text;
+  EXPECT_EQ(node.counters().dropped_no_transform, 0U);
 }
 
 TEST(Node, AnInitialPoseRestartsTheFilterThereAndStopEndsWithinASecond) {

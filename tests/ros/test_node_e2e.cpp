@@ -85,7 +85,8 @@ TEST(NodeEndToEnd, LocalizesTheTurtleBotRecordingPlayedOverDdsAsReplayDoes) {
 
   Listener listener(std::stoi(domain));
   const std::string stats = (dir / "stats.json").string();
-  Process node({MOTE_EXE, "node", "--domain", domain, "--stats", stats},
+  const std::string pose_file = (dir / "pose.yaml").string();
+  Process node({MOTE_EXE, "node", "--domain", domain, "--stats", stats, "--pose-file", pose_file},
                (dir / "node.log").string());
   ASSERT_TRUE(node.started());
   // The map goes out on /map after the node has started (transient local: it waits for it).
@@ -117,6 +118,17 @@ TEST(NodeEndToEnd, LocalizesTheTurtleBotRecordingPlayedOverDdsAsReplayDoes) {
   ASSERT_FALSE(listener.map_to_odom.empty());
   EXPECT_GE(static_cast<double>(listener.map_to_odom.size()), json_number(json, "published") * 0.9);
   EXPECT_GT(listener.states, 0U);
+  // The pose file holds a pose from the tracking stretch, saved every 2 s: within the distance
+  // the robot drives in that time of the end.
+  const std::string saved = slurp(pose_file);
+  std::istringstream fields(saved);
+  std::string line;
+  double x = NAN, y = NAN;
+  while (std::getline(fields, line)) {
+    if (line.rfind("x: ", 0) == 0) x = std::stod(line.substr(3));
+    if (line.rfind("y: ", 0) == 0) y = std::stod(line.substr(3));
+  }
+  EXPECT_LT(std::hypot(x - live.x, y - live.y), 1.0) << saved;
 }
 
 // The stamped poses of a TUM trajectory.

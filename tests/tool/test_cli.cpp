@@ -302,5 +302,47 @@ TEST(Cli, CutMcapReplaysWithAWarning) {
   EXPECT_LT(scans, 357.0);
 }
 
+// Issue 48: an --out that names a file failed only after the whole replay (or calibration). It
+// is checked first now: here the map and log do not exist, and the error is about --out.
+TEST(Cli, OutNamingAFileFailsBeforeTheReplay) {
+  const fs::path dir = scratch("out_file");
+  const fs::path file = dir / "taken.txt";
+  std::ofstream(file) << "not a folder\n";
+  for (const std::string command : {"replay", "calibrate"}) {
+    const Outcome o = mote(command + " --map '" + (dir / "none.yaml").string() + "' --log '" +
+                           (dir / "none.clf").string() + "' --out '" + file.string() + "'");
+    EXPECT_EQ(o.status, 1) << command << ": " << o.err;
+    EXPECT_EQ(lines(o.err), 1) << o.err;
+    EXPECT_NE(o.err.find("mote " + command + ": " + file.string() +
+                         ": the output folder is a file; name a folder (created if missing)"),
+              std::string::npos)
+        << o.err;
+  }
+  EXPECT_EQ(slurp(file), "not a folder\n");
+}
+
+// Issue 48: a .clf cut inside a line stops with exit status 1 and says it may be cut short and
+// that --lenient reads what is there; with --lenient the replay runs to the cut.
+TEST(Cli, CutCarmenLogNamesLenient) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path dir = scratch("intel_cut");
+  const std::string whole = slurp(yaml.parent_path() / "intel.clf");
+  std::ofstream(dir / "cut.clf", std::ios::binary) << whole.substr(0, whole.size() / 4 + 7);
+  const std::string common = "replay --map '" + yaml.string() + "' --log '" +
+                             (dir / "cut.clf").string() + "' --quiet --out '";
+  const Outcome strict = mote(common + (dir / "strict").string() + "'");
+  EXPECT_EQ(strict.status, 1) << strict.err;
+  EXPECT_EQ(lines(strict.err), 1) << strict.err;
+  EXPECT_NE(strict.err.find("mote replay: " + (dir / "cut.clf").string() + ": line "),
+            std::string::npos)
+      << strict.err;
+  EXPECT_NE(strict.err.find("cut short? --lenient reads the "), std::string::npos) << strict.err;
+  const Outcome lenient = mote(common + (dir / "lenient").string() + "' --lenient");
+  EXPECT_EQ(lenient.status, 0) << lenient.err;
+  const double scans = json_number(slurp(dir / "lenient" / "report.json"), "scans");
+  EXPECT_GT(scans, 100.0);
+  EXPECT_LT(scans, 910.0);
+}
+
 }  // namespace
 }  // namespace mote_cli_test

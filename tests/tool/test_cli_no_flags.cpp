@@ -124,8 +124,31 @@ TEST(CliNoFlags, AReferenceOfAnotherLogIsAnError) {
                          (yaml.parent_path() / "intel.clf").string() + "' --reference '" +
                          other.string() + "' --quiet --out '" + (out / "run").string() + "'");
   EXPECT_EQ(o.status, 1);
-  EXPECT_NE(o.err.find(other.string() + ": no reference pose within"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find(other.string() + ": matches 0 of the "), std::string::npos) << o.err;
   EXPECT_NE(o.err.find("another log"), std::string::npos) << o.err;
+}
+
+// Issue 48: another shared log's reference overlaps Intel's stamps (CARMEN stamps count from each
+// log's start) and matched 5 of 902 updates, scored as `localized yes` with a 30 m ATE. Fewer
+// matches than half the updates is an error naming both files, the count and the two spans
+// (a log's own reference matches every update on every shared log).
+TEST(CliNoFlags, AnOverlappingReferenceOfAnotherLogIsRefusedWithTheNumbers) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  MOTE_REQUIRE_DATA(other, "dev/edmonton/edmonton.gt.tum");
+  const fs::path log = yaml.parent_path() / "intel.clf";
+  const fs::path out = scratch("intel-edmonton-reference");
+  const Outcome o = mote("replay --map '" + yaml.string() + "' --log '" + log.string() +
+                         "' --reference '" + other.string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(o.status, 1) << o.out << o.err;
+  EXPECT_EQ(o.out.find("localized"), std::string::npos) << o.out;
+  EXPECT_NE(o.err.find("mote replay: " + other.string() + ": matches 5 of the 902 updates of " +
+                       log.string()),
+            std::string::npos)
+      << o.err;
+  EXPECT_NE(o.err.find("the log's updates span 32.91 to 2683.77 s, the reference's poses 18.09 "
+                       "to 726.07 s: is it the reference of another log?"),
+            std::string::npos)
+      << o.err;
 }
 
 // Without a reference the summary still says whether and where the run localized.

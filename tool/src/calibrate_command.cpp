@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "mote/calibrate/calibrate.hpp"
 #include "mote/engine/localizer_config.hpp"
+#include "mote/replay/report.hpp"
 
 namespace mote::tool {
 namespace {
@@ -193,6 +194,7 @@ int calibrate_command(std::span<char* const> words) {
   }
   const std::filesystem::path out = args.required("out");
   const calibrate::CalibrationOptions options = options_from(args);
+  replay::make_output_folder(out);  // before the rounds of replays, not after them
   const calibrate::CalibrationResult result = calibrate::calibrate(options);
   const std::filesystem::path yaml = calibrate::write_calibration(result, out);
   print_summary(result, yaml);

@@ -34,6 +34,8 @@ void apply_node_params(const NodeParams& p, ros::NodeOptions& o) {
     o.initial_pose = Pose2{p.initial_pose.x, p.initial_pose.y, wrap_angle(p.initial_pose.yaw)};
   if (p.save_pose_rate > 0.0) o.save_pose_rate = p.save_pose_rate;
   if (p.initialize_at_saved_pose) o.pose_file = p.saved_pose_filepath;
+  o.first_map_only = p.first_map_only;
+  o.always_reset_initial_pose = p.always_reset_initial_pose;
 }
 
 void apply_flags(const ParsedArgs& args, ros::NodeOptions& o) {

@@ -168,6 +168,8 @@ void print_config_summary(const char* command, const LoadedConfig& loaded,
 replay::ReplayResult replay_and_report(replay::ReplayOptions options,
                                        const std::filesystem::path& out_dir,
                                        const replay::ReportOptions& report, bool viewer) {
+  // A replay can take minutes: an --out that cannot be a folder fails before it, not after.
+  replay::make_output_folder(out_dir);
   std::optional<replay::ViewerRecorder> recorder;
   if (viewer) {
     // The recorder quantizes against the map the run loads; loading it twice costs milliseconds.

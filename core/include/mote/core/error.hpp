@@ -19,12 +19,17 @@ class Error : public std::runtime_error {
 class InputError : public Error {
  public:
   InputError(std::string file, std::string place, const std::string& problem)
-      : Error(format(file, place, problem)), file_(std::move(file)), place_(std::move(place)) {}
+      : Error(format(file, place, problem)),
+        file_(std::move(file)),
+        place_(std::move(place)),
+        problem_(problem) {}
 
   /// The file (or stream name) the input came from.
   [[nodiscard]] const std::string& file() const noexcept { return file_; }
   /// Where in it: "line 12", "byte 4096", "key 'resolution'"; may be empty.
   [[nodiscard]] const std::string& place() const noexcept { return place_; }
+  /// What is wrong there, without the file and the place (to rethrow it with more said).
+  [[nodiscard]] const std::string& problem() const noexcept { return problem_; }
 
  private:
   static std::string format(const std::string& file, const std::string& place,
@@ -51,6 +56,7 @@ class InputError : public Error {
 
   std::string file_;
   std::string place_;
+  std::string problem_;
 };
 
 /// A configuration value out of its valid range, or an API used against its contract.

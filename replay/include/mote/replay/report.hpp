@@ -51,6 +51,10 @@ void print_summary(std::ostream& out, const ReplayResult& result,
 /// it cannot be written.
 void write_updates_csv(const std::filesystem::path& file, const ReplayResult& result);
 
+/// Creates the output folder `dir` if needed. Throws mote::Error naming it when it is a file or
+/// cannot be made, so that a command can check it before a replay that takes minutes.
+void make_output_folder(const std::filesystem::path& dir);
+
 /// Creates `dir` if needed and writes report.json, trajectory.tum, updates.csv and map.png into it
 /// (and profile.folded with options.profile). Throws mote::Error when a file cannot be written.
 void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& result,

@@ -41,6 +41,9 @@ struct NodeOptions {
   Eigen::Matrix3d initial_covariance = Eigen::Vector3d(0.25, 0.25, 0.0685).asDiagonal();
   /// A map_server YAML to use instead of (until) the map topic; empty: wait for the topic.
   std::filesystem::path map_file;
+  bool first_map_only = false;  ///< keep the first map; later ones on the topic are ignored
+  /// A new map starts at the initial pose (or globally), not at the last pose while tracking.
+  bool always_reset_initial_pose = false;
   /// Where the last pose is kept across restarts (empty: nowhere): written atomically every
   /// 1 / save_pose_rate seconds while tracking, read at start when no initial pose is given.
   std::filesystem::path pose_file;
