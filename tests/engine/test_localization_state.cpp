@@ -257,32 +257,6 @@ TEST_F(StateOnIntel, ALostRobotStandingStillRelocalizes) {
   EXPECT_GT(relocalized, 0U) << "a lost robot standing still never re-localized";
 }
 
-// After initialize*() the estimate and the state are the new belief's, nothing of the previous
-// run's: a live node publishes them right after an /initialpose.
-TEST_F(StateOnIntel, InitializationForgetsTheRefinedPoseAndTheState) {
-  LocalizerConfig c = config();
-  Localizer filter(*map_, c);
-  filter.initialize(kIntelStart, start_covariance());
-  const auto near = [](const Pose2& a, const Pose2& b) {
-    return std::hypot(a.x - b.x, a.y - b.y) < 0.05;
-  };
-  EXPECT_TRUE(near(filter.estimate().refined.pose, kIntelStart))
-      << filter.estimate().refined.pose.x << " " << filter.estimate().refined.pose.y;
-  test::Drive drive(*map_, kIntelStart, 7);
-  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
-  for (int k = 0; k < 5; ++k) drive.feed(filter);
-  ASSERT_EQ(filter.last_update().state, LocalizationState::kTracking);
-  const Pose2 elsewhere{5.0, 2.0, 1.0};
-  filter.initialize(elsewhere, start_covariance());
-  EXPECT_TRUE(near(filter.estimate().refined.pose, elsewhere))
-      << filter.estimate().refined.pose.x << " " << filter.estimate().refined.pose.y;
-  EXPECT_TRUE(filter.estimate().refined.covariance.isZero());
-  EXPECT_EQ(filter.last_update().state, LocalizationState::kUncertain);
-  filter.initialize_global();
-  EXPECT_EQ(filter.last_update().state, LocalizationState::kUncertain);
-  EXPECT_TRUE(near(filter.estimate().refined.pose, filter.estimate().best().mean));
-}
-
 TEST_F(StateOnIntel, LostOnAnotherBuildingsMap) {
   MOTE_REQUIRE_DATA(wean_yaml, "wean/wean_map.yaml");
   const OccupancyGrid wean = load_map(wean_yaml);
