@@ -109,6 +109,12 @@ bool BlockedBeamFilter::focused(const std::vector<PoseEstimate>& clusters, doubl
   return settled >= kFocusedWeight;
 }
 
+bool BlockedBeamFilter::one_place_on(const BeamSet& beams,
+                                     const std::vector<PoseEstimate>& clusters) {
+  const double range = mean_endpoint_range(beams);
+  return focused(clusters, range, range);
+}
+
 bool BlockedBeamFilter::focused_on(const BeamSet& beams, const MapField& map,
                                    const std::vector<PoseEstimate>& clusters) {
   return focused(clusters, hit_band(map.mixture, beams.range_max), mean_endpoint_range(beams));

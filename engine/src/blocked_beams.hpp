@@ -65,6 +65,17 @@ class BlockedBeamFilter {
   /// focused() at the hit band of the map's mixture and the mean range of the endpoints of beams.
   [[nodiscard]] static bool focused_on(const BeamSet& beams, const MapField& map,
                                        const std::vector<PoseEstimate>& clusters);
+  /// Whether the belief is one place, however wide (the localization state's test): focused()
+  /// at the scale of the scan itself, the mean range of the endpoints of beams. A hypothesis
+  /// whose spread moves an endpoint by less than the scan reaches is one place that the scan
+  /// match resolves; a wider one is a region of the building, as a fresh global set is (its
+  /// heading spread alone, pi / sqrt(3) rad, moves an endpoint by 1.8 ranges). The hit band
+  /// would be the wrong scale here: adaptive tempering and the odometry noise before its fit
+  /// widen the cloud to 0.6 m and 19 degrees at the start of the Edmonton log while the
+  /// refined pose is within 0.06 m of the reference, and the state read `uncertain` for its
+  /// first 50 s.
+  [[nodiscard]] static bool one_place_on(const BeamSet& beams,
+                                         const std::vector<PoseEstimate>& clusters);
   /// Position standard deviation plus heading standard deviation times `range`: how far the
   /// cluster's spread moves an endpoint at that range.
   [[nodiscard]] static double endpoint_spread(const PoseEstimate& cluster, double range);

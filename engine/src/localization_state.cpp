@@ -17,14 +17,14 @@ const char* name_of(LocalizationState state) noexcept {
 }
 
 LocalizationState LocalizationMonitor::update(double see_through, double hit_share,
-                                              bool focused) noexcept {
+                                              bool one_place) noexcept {
   const double misfit = see_through + (1.0 - hit_share);
   if (!std::isfinite(misfit)) return state_;
   smoothed_ = started_ ? smoothed_ + config_.smoothing * (misfit - smoothed_) : misfit;
   started_ = true;
   if (smoothed_ > config_.lost_misfit) {
     state_ = LocalizationState::kLost;
-  } else if (focused) {
+  } else if (one_place) {
     state_ = LocalizationState::kTracking;
   } else {
     state_ = LocalizationState::kUncertain;

@@ -63,8 +63,8 @@ struct Localizer::Impl {
   [[nodiscard]] bool still_update_due(const LaserScan& scan);
   void update_estimate();
   // Whether the estimate's clusters are focused (BlockedBeamFilter::focused), judged once per
-  // update: the state's tracking test, the re-localization schedule, the blocked-beam filter and
-  // tracking tempering all read this one verdict.
+  // update: the re-localization schedule, the blocked-beam filter and tracking tempering all
+  // read this one verdict; the state reads the same rule at the scan's scale (one_place).
   void judge_focus();
   // The best hypothesis matched to the map with every valid reading, and the state it gives.
   void judge_localization();
@@ -116,6 +116,9 @@ struct Localizer::Impl {
   // (where the state reads it) and held for the next update's blocked-beam filter and tempering,
   // which weigh against that same belief; made before the first update after initialization.
   bool focused = false;
+  // The same judgement at the scale of the scan (BlockedBeamFilter::one_place_on): the state's
+  // test of one hypothesis, which a cloud widened by tempering still passes.
+  bool one_place = false;
   bool focus_judged = false;  // false between initialization and the first judge_focus()
 };
 

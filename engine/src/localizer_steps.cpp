@@ -350,6 +350,7 @@ void Localizer::Impl::judge_focus() {
   // The mean range of every reading with an endpoint: the scan the clusters were judged with
   // (or, before the first update, the scan about to be weighed).
   focused = BlockedBeamFilter::focused_on(readings, *field, estimate.clusters);
+  one_place = BlockedBeamFilter::one_place_on(readings, estimate.clusters);
   focus_judged = true;
 }
 
@@ -366,7 +367,7 @@ void Localizer::Impl::judge_localization() {
     const FieldWalker walk(map, field->field);
     stats.see_through = see_through_share(beams, match.pose, walk, 2.0 * config.sigma_hit);
   }
-  stats.state = monitor.update(stats.see_through, stats.hit_share, focused);
+  stats.state = monitor.update(stats.see_through, stats.hit_share, one_place);
   stats.misfit = monitor.smoothed();
   // The reported estimate: the match where the belief supports it, else the hypothesis itself,
   // unrefined and without a covariance (not a fix the odometry-noise fit may use).

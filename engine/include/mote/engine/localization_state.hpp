@@ -58,10 +58,11 @@ class LocalizationMonitor {
   explicit LocalizationMonitor(LocalizationStateConfig config = {}) : config_(config) {}
 
   /// One update's see-through and hit shares (at the refined best pose) and whether the belief
-  /// is focused: tight hypotheses hold most of its weight (the Localizer's one rule, the
-  /// blocked-beam filter's: weight and spread, so a fresh global set, one connected cluster
-  /// metres wide, is not); a NaN share (no reading with an endpoint) leaves the state as it was.
-  LocalizationState update(double see_through, double hit_share, bool focused) noexcept;
+  /// is one place: hypotheses narrower than the scan reaches hold most of its weight (the
+  /// Localizer's focus rule of weight and spread, at the scan's scale: a fresh global set, one
+  /// connected cluster the size of the building, is not); a NaN share (no reading with an
+  /// endpoint) leaves the state as it was.
+  LocalizationState update(double see_through, double hit_share, bool one_place) noexcept;
   /// Forgets the average and the state (after initialization or re-localization): the next
   /// scan starts both afresh, and until then the state is uncertain.
   void reset() noexcept {
