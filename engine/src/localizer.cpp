@@ -84,6 +84,7 @@ void Localizer::Impl::start_fresh() {
   focus_judged = false;
   odometry_noise.reset();
   last_fix = {};
+  correlation = 0.0;
   motion = make_motion(config);
   stats = UpdateStats{};
   stats.particles = store.size();

@@ -66,6 +66,8 @@ struct Localizer::Impl {
   // update: the re-localization schedule, the blocked-beam filter and tracking tempering all
   // read this one verdict; the state reads the same rule at the scan's scale (one_place).
   void judge_focus();
+  // Folds a trusted match's residual correlation into `correlation`.
+  void learn_correlation(const ScanMatch& match);
   // The best hypothesis matched to the map with every valid reading, and the state it gives.
   void judge_localization();
   // After an update: the residual of the estimate's motion against the odometry's, and the
@@ -119,7 +121,11 @@ struct Localizer::Impl {
   // The same judgement at the scale of the scan (BlockedBeamFilter::one_place_on): the state's
   // test of one hypothesis, which a cloud widened by tempering still passes.
   bool one_place = false;
-  bool focus_judged = false;  // false between initialization and the first judge_focus()
+  bool focus_judged = false;
+  // Running geometric mean of ScanMatch::correlation over the matches taken while tracking
+  // (learn_correlation), by which the next match's covariance is inflated; 0 until the first,
+  // which then inflates by its own.
+  double correlation = 0.0;  // false between initialization and the first judge_focus()
 };
 
 }  // namespace mote

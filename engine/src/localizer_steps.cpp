@@ -356,7 +356,7 @@ void Localizer::Impl::judge_focus() {
 
 void Localizer::Impl::judge_localization() {
   const PoseEstimate& best = estimate.best();
-  const ScanMatch match = matcher->match(endpoints, best.mean);
+  const ScanMatch match = matcher->match(endpoints, best.mean, correlation);
   // A scan without an endpoint (every reading a no-return) says nothing about the fit: the
   // state stays as it was. The state reads the match even where the estimate below does not
   // take it: how well the scan can fit near the hypothesis is the question it answers.
@@ -375,11 +375,25 @@ void Localizer::Impl::judge_localization() {
   // odometry-noise fit takes it.
   stats.refined_gated = match.converged && !supported(match, best);
   stats.refined_matched = match.converged && !stats.refined_gated && !endpoints.empty();
+  learn_correlation(match);
   estimate.refined = stats.refined_matched
                          ? match
                          : ScanMatch{.pose = best.mean,
                                      .endpoints = endpoints.size(),
                                      .hit_share = matcher->hit_share(endpoints, best.mean)};
+}
+
+void Localizer::Impl::learn_correlation(const ScanMatch& match) {
+  // Only matches the filter trusts while it tracks: a geometric mean over about the last
+  // 1 / kCorrelationSmoothing of them, so that one misaligned fit moves it by a tenth.
+  if (stats.state != LocalizationState::kTracking || !stats.refined_matched) return;
+  if (!(match.correlation >= 1.0) || !std::isfinite(match.correlation)) return;
+  constexpr double kCorrelationSmoothing = 0.1;
+  correlation =
+      correlation > 0.0
+          ? std::exp(std::log(correlation) +
+                     kCorrelationSmoothing * (std::log(match.correlation) - std::log(correlation)))
+          : match.correlation;
 }
 
 }  // namespace mote

@@ -143,7 +143,8 @@ double ScanMatcher::correlation_factor(std::span<const Point2> ends, const Pose2
   return std::min(factor, count);
 }
 
-ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start) const {
+ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start,
+                             double correlation) const {
   ScanMatch out;
   out.pose = start;
   out.endpoints = ends.size();
@@ -200,7 +201,9 @@ ScanMatch ScanMatcher::match(std::span<const Point2> ends, const Pose2& start) c
   if (at.weights > 0.0 && trace > 0.0) {
     Eigen::Matrix3d h = at.h;
     h.diagonal().array() += 1e-6 * trace;
-    const double variance = at.weighted_squares / at.weights * correlation_factor(ends, pose);
+    out.correlation = correlation_factor(ends, pose);
+    const double factor = correlation > 0.0 ? correlation : out.correlation;
+    const double variance = at.weighted_squares / at.weights * factor;
     const Eigen::Matrix3d cov = variance * h.ldlt().solve(Eigen::Matrix3d::Identity());
     const double cy = std::cos(field_.origin().theta);
     const double sy = std::sin(field_.origin().theta);

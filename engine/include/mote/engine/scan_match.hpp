@@ -38,14 +38,21 @@ struct ScanMatch {
   Pose2 pose;  ///< the refined pose (map frame)
   /// Covariance of the refined pose (x m, y m, theta rad; map frame): the robust residual
   /// variance times the inverse Gauss-Newton Hessian (the Laplace approximation), inflated by
-  /// n over the effective number of independent readings (the residuals' lag-1
-  /// autocorrelation along the scan, an AR(1) model): hundreds of neighbouring readings that
-  /// see the same wall error are not hundreds of independent ones, and taken as such they made
-  /// the belief's chi-square gate refuse 1-2.6 % of tracking updates instead of 0.1 %. A
-  /// direction the readings do not constrain gets a variance a million times the
-  /// best-constrained one's. Zero when no endpoint lies near a wall.
+  /// n over the effective number of independent readings (`correlation`, or the caller's
+  /// estimate of it): hundreds of neighbouring readings that see the same wall error are not
+  /// hundreds of independent ones, and taken as such they made the belief's chi-square gate
+  /// refuse 1-2.6 % of tracking updates instead of 0.1 %. A direction the readings do not
+  /// constrain gets a variance a million times the best-constrained one's. Zero when no
+  /// endpoint lies near a wall.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   std::size_t endpoints = 0;  ///< endpoints matched
+  /// n over the effective number of independent readings measured at this match: (1 + rho) /
+  /// (1 - rho) for the lag-1 autocorrelation rho >= 0 of the robust residuals along the scan
+  /// (an AR(1) model), within [1, n]. A misaligned fit correlates its residuals too (a scan
+  /// turned 20 degrees misses every wall on the same side), so one match's own value would
+  /// loosen the gate just where the match is wrong: the Localizer inflates by a running
+  /// estimate over the matches it trusted instead.
+  double correlation = 1.0;
   /// Share of the endpoints within `scale` of a mapped obstacle's surface at the refined pose.
   double hit_share = 0.0;
   int iterations = 0;  ///< Gauss-Newton steps taken
@@ -63,8 +70,11 @@ class ScanMatcher {
   ScanMatcher(const SignedDistanceField& field, ScanMatchConfig config);
 
   /// Refines `start` for the endpoints `ends` (robot frame, m). Deterministic; single-threaded.
-  /// With no endpoint, returns `start` with zero shares.
-  [[nodiscard]] ScanMatch match(std::span<const Point2> ends, const Pose2& start) const;
+  /// With no endpoint, returns `start` with zero shares. `correlation` > 0 inflates the
+  /// covariance by that factor (a running estimate of ScanMatch::correlation); otherwise by the
+  /// factor measured at this match.
+  [[nodiscard]] ScanMatch match(std::span<const Point2> ends, const Pose2& start,
+                                double correlation = 0.0) const;
 
   /// Share of `ends`, seen from `pose`, within `scale` of an obstacle's surface (no refinement).
   [[nodiscard]] double hit_share(std::span<const Point2> ends, const Pose2& pose) const;
