@@ -94,12 +94,13 @@ struct ReplayResult {
   /// An empty result for a run on `grid` with `cfg`.
   ReplayResult(OccupancyGrid grid, LocalizerConfig cfg) : map(std::move(grid)), config(cfg) {}
 
-  OccupancyGrid map;         ///< the map the run used
-  LocalizerConfig config;    ///< the config it ran with
-  int threads = 0;           ///< threads the filter ran on
-  GlobalSetSize global_set;  ///< what a global start or a re-localization draws
-  std::size_t scans = 0;     ///< scan frames read
-  double first_stamp = 0.0;  ///< s, stamp of the first scan
+  OccupancyGrid map;          ///< the map the run used
+  LocalizerConfig config;     ///< the config it ran with
+  int threads = 0;            ///< threads the filter ran on
+  GlobalSetSize global_set;   ///< what a global start or a re-localization draws
+  bool global_start = false;  ///< the filter started globally (drew global_set at the start)
+  std::size_t scans = 0;      ///< scan frames read
+  double first_stamp = 0.0;   ///< s, stamp of the first scan
   /// The estimate after every update that ran: the heaviest cluster's mean matched to the map
   /// (LocalizationEstimate::refined).
   std::vector<logs::StampedPose> trajectory;
