@@ -160,6 +160,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
 
   result.reader = source->stats();
   result.laser_range_max_source = source->range_max_source();
+  result.stamp_source = source->stamp_source();
   result.final_particles = particle_poses(filter);
   if (!result.reference.empty()) {
     MetricOptions metrics = options.metrics;

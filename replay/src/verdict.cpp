@@ -58,6 +58,7 @@ RunVerdict judge_run(const ReplayResult& result) {
   v.final_state = result.updates.back().state;
   v.final_pose = result.trajectory.back().pose;
   v.final_stamp = result.trajectory.back().stamp;
+  v.stamp_source = result.stamp_source;
   // The verdict reads the last kVerdictUpdates updates, not the last one: a single scan through
   // a doorway the map draws closed reads lost for an update or two on a run that is where it
   // should be (Wean), while a wrong map or an unrecovered kidnapping stays lost through the
@@ -124,7 +125,11 @@ std::vector<std::pair<std::string, std::string>> verdict_rows(const RunVerdict& 
   std::string localized = buf.data();
   std::snprintf(buf.data(), buf.size(), "x %.3f m, y %.3f m, theta %.3f rad at %.3f s",
                 v.final_pose.x, v.final_pose.y, v.final_pose.theta, v.final_stamp);
-  return {{"localized", localized}, {"final pose", buf.data()}};
+  std::string final_pose = buf.data();
+  // Which clock: a bag's scan header stamps can be hours from the record times `mote info`'s
+  // duration spans.
+  if (!v.stamp_source.empty()) final_pose.append(" (").append(v.stamp_source).append(")");
+  return {{"localized", localized}, {"final pose", final_pose}};
 }
 
 std::string capped_global_set_text(const ReplayResult& r) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "cli_test_util.hpp"
@@ -59,6 +60,35 @@ TEST(CliSummary, LocalizedNeverContradictsTheEndState) {
   const std::string report = slurp(out / "report.json");
   EXPECT_NE(report.find("\"localized\": false"), std::string::npos);
   EXPECT_NE(report.find("\"unsure\": true"), std::string::npos);
+}
+
+// The DIS bag's scan header stamps run 6,300 s before its record times. `mote info` gives both
+// spans and says which is which; the replay's final pose says its stamp is a header stamp, and
+// falls inside the span `mote info` names for those.
+TEST(CliSummary, InfoAndTheSummarySayWhichTimeTheyPrint) {
+  MOTE_REQUIRE_DATA(yaml, "dis/dis_underground.yaml");
+  const fs::path bag = yaml.parent_path() / "dis-underground.bag";
+  const Outcome info = mote("info '" + bag.string() + "'");
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_NE(info.out.find("duration          110.471 s of record times (from 1510763707.057 to "
+                          "1510763817.528)"),
+            std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("scan stamps       1510757286.109 to 1510757396.490 (header.stamp, "
+                          "the times mote replay prints)"),
+            std::string::npos)
+      << info.out;
+  const fs::path out = scratch("dis-stamps");
+  const Outcome o = mote("replay --map '" + yaml.string() + "' --log '" + bag.string() +
+                         "' --out '" + out.string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string pose = summary_row(o.out, "final pose");
+  const std::string suffix = " s (header.stamp)";
+  ASSERT_GT(pose.size(), suffix.size()) << o.out;
+  EXPECT_EQ(pose.substr(pose.size() - suffix.size()), suffix) << pose;
+  const double stamp = std::strtod(pose.c_str() + pose.rfind(" at ") + 4, nullptr);
+  EXPECT_GE(stamp, 1510757286.109) << pose;
+  EXPECT_LE(stamp, 1510757396.490) << pose;
 }
 
 }  // namespace

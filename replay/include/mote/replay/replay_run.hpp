@@ -110,9 +110,10 @@ struct ReplayResult {
   std::string first_unusual_reason;                    ///< reason of the first non-normal outcome
   logs::ReadStats reader;                              ///< what the log reader skipped
   float laser_range_max = 0.0F;  ///< m, range_max of the first scan (the laser's no-return value)
-  std::string laser_range_max_source;        ///< where it came from (ScanSource::range_max_source)
-  std::vector<logs::StampedPose> reference;  ///< the reference trajectory (may be empty)
-  std::optional<TrajectoryErrors> errors;    ///< with a reference
+  std::string laser_range_max_source;  ///< where it came from (ScanSource::range_max_source)
+  std::string stamp_source;            ///< what the stamps above are (ScanSource::stamp_source)
+  std::vector<logs::StampedPose> reference;         ///< the reference trajectory (may be empty)
+  std::optional<TrajectoryErrors> errors;           ///< with a reference
   std::optional<TrajectoryErrors> particle_errors;  ///< of particle_trajectory, with a reference
   std::optional<KidnapRecovery> kidnap;             ///< with a reference and kidnapped_at
   std::vector<Pose2> final_particles;               ///< the particle cloud after the last scan

@@ -44,6 +44,7 @@ struct RunVerdict {
   std::size_t lost_at_end = 0;  ///< lost updates among them
   Pose2 final_pose;             ///< the last estimate (trajectory.tum's last row)
   double final_stamp = 0.0;     ///< s, its stamp
+  std::string stamp_source;     ///< what the stamp is ("header.stamp", "ipc_timestamp")
   /// Empty when localized; else why the run is not to be trusted, in words for a user.
   /// An unsure run's warning is not a failure (exit_status).
   std::string warning;
