@@ -89,6 +89,8 @@ def main():
         if done.returncode != 0:
             fail("the README's first replay exited %d" % done.returncode)
         got, want = rows(done.stdout), rows(shown)
+        if len(want) < 10:
+            fail("the README's output block after the command has %d summary rows" % len(want))
         if [n for n, _ in got] != [n for n, _ in want]:
             fail("rows %s, the README shows %s" % ([n for n, _ in got], [n for n, _ in want]))
         for name in ("scans / updates", "localized"):
