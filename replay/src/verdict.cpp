@@ -28,11 +28,17 @@ double seconds_at(const ReplayResult& result, std::size_t k) {
 std::string lost_warning(std::size_t lost_in_window, std::size_t window, std::size_t lost,
                          std::size_t updates) {
   const double share = 100.0 * static_cast<double>(lost) / static_cast<double>(updates);
-  return "the run ends lost: the scans do not fit the map around the estimate (lost on " +
-         std::to_string(lost_in_window) + " of the last " + std::to_string(window) + " updates, " +
-         std::to_string(static_cast<int>(std::lround(share))) +
-         " % of all). A map of another place, a wrong laser frame or range, or a "
-         "kidnapping the filter has not recovered from";
+  std::string text =
+      "the run ends lost: the scans do not fit the map around the estimate (lost on ";
+  text.append(std::to_string(lost_in_window))
+      .append(" of the last ")
+      .append(std::to_string(window))
+      .append(" updates, ")
+      .append(std::to_string(static_cast<int>(std::lround(share))))
+      .append(
+          " % of all). A map of another place, a wrong laser frame or range, or a kidnapping "
+          "the filter has not recovered from");
+  return text;
 }
 
 std::string unsure_warning(std::size_t lost_last, std::size_t window) {

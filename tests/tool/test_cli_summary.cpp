@@ -62,6 +62,27 @@ TEST(CliSummary, LocalizedNeverContradictsTheEndState) {
   EXPECT_NE(report.find("\"unsure\": true"), std::string::npos);
 }
 
+// With 2000 particles the Intel map's global set is capped. Started at the reference's first pose
+// the run draws none and gets no advice to raise max_particles; started globally it is told which
+// draws were capped.
+TEST(CliSummary, TheCappedGlobalSetIsReportedOnlyWhenTheRunDrewIt) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  const std::string run = "replay --map '" + yaml.string() + "' --log '" +
+                          (data / "intel.clf").string() + "' --reference '" +
+                          (data / "intel.gt.tum").string() + "' --max-particles 2000 --out '" +
+                          scratch("intel-capped").string() + "'";
+  const Outcome known = mote(run);
+  ASSERT_EQ(known.status, 0) << known.err;
+  EXPECT_EQ(summary_row(known.out, "global set"), "") << known.out;
+  const Outcome global = mote(run + " --init global");
+  ASSERT_EQ(global.status, 0) << global.err;
+  EXPECT_NE(summary_row(global.out, "global set")
+                .rfind("capped at max_particles for the global start", 0),
+            std::string::npos)
+      << global.out;
+}
+
 // The DIS bag's scan header stamps run 6,300 s before its record times. `mote info` gives both
 // spans and says which is which; the replay's final pose says its stamp is a header stamp, and
 // falls inside the span `mote info` names for those.
