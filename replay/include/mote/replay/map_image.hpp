@@ -35,7 +35,7 @@ struct MapOverlay {
   /// settles its estimate jumps between places, and a line between them would cross walls.
   std::size_t settled = 0;
   /// Where the start marker goes (nullopt: the estimate's first pose) and its legend label.
-  std::optional<Pose2> start;
+  std::optional<Pose2> start{};
   std::string start_label = "start";
 };
 
