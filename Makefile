@@ -1,7 +1,7 @@
 # The two commands of the README: `make run` and `make test`. Both install missing Debian
-# packages, configure a Release build in build/ and build it: `make run` only the mote tool
-# (scripts/install-deps run: no test, benchmark, Python or browser packages), `make test`
-# everything. Plain CMake works too (README).
+# packages, configure a Release build in build/ and build it: `make run` the libraries and the
+# mote tool, all `cmake --install build` needs (scripts/install-deps run: no test, benchmark,
+# Python or browser packages), `make test` everything. Plain CMake works too (README).
 
 BUILD       ?= build
 JOBS        ?= $(shell nproc)
@@ -30,7 +30,7 @@ build: configure
 run: deps-run
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DMOTE_BUILD_TESTS=OFF \
 	  -DMOTE_BUILD_BENCH=OFF -DMOTE_BUILD_EXAMPLES=OFF $(CMAKE_FLAGS)
-	cmake --build $(BUILD) -j $(JOBS) --target mote_cli
+	cmake --build $(BUILD) -j $(JOBS)
 	$(BUILD)/tool/mote run
 
 test: build

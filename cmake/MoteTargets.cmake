@@ -101,6 +101,7 @@ function(mote_add_library name)
   target_link_libraries(mote_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   mote_target_options(mote_${name})
   install(TARGETS mote_${name} EXPORT moteTargets)
+  set_property(GLOBAL APPEND PROPERTY MOTE_INSTALLED_TARGETS mote_${name})
   install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endfunction()
 

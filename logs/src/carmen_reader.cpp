@@ -80,6 +80,8 @@ class CarmenSource final : public ScanSource {
 
   [[nodiscard]] ReadStats stats() const override { return stats_; }
 
+  [[nodiscard]] std::string stamp_source() const override { return "ipc_timestamp"; }
+
   [[nodiscard]] std::string range_max_source() const override {
     if (saw_flaser_ && saw_robotlaser_) {
       return flaser_source_ + " (FLASER/RLASER; ROBOTLASER1 lines record their own)";

@@ -18,7 +18,9 @@ namespace {
 void add_scans(const std::filesystem::path& path, const ReaderOptions& options, LogInfo& info) {
   const std::unique_ptr<ScanSource> source = open_scan_log(path, options);
   while (const std::optional<ScanFrame> f = source->next()) {
+    info.scan_last = f->stamp;
     if (info.scans++ > 0) continue;
+    info.scan_first = f->stamp;
     const LaserScan& s = f->scan;
     info.beams = s.size();
     info.angle_min = s.angle_min;
@@ -29,6 +31,7 @@ void add_scans(const std::filesystem::path& path, const ReaderOptions& options, 
     info.mount = s.sensor_pose;
   }
   info.range_max_source = source->range_max_source();
+  info.stamp_source = source->stamp_source();
   const ReadStats stats = source->stats();
   info.warnings.insert(info.warnings.end(), stats.warnings.begin(), stats.warnings.end());
 }
@@ -50,6 +53,9 @@ LogInfo describe_log(const std::filesystem::path& path, const ReaderOptions& opt
   add_scans(path, options, scans);  // first: open_scan_log rejects what is not a log
   LogInfo info = detail::count_messages(path, options);
   info.scans = scans.scans;
+  info.scan_first = scans.scan_first;
+  info.scan_last = scans.scan_last;
+  info.stamp_source = scans.stamp_source;
   info.beams = scans.beams;
   info.angle_min = scans.angle_min;
   info.angle_max = scans.angle_max;
@@ -63,9 +69,14 @@ LogInfo describe_log(const std::filesystem::path& path, const ReaderOptions& opt
 }
 
 void print_log_info(std::ostream& out, const LogInfo& info) {
+  // Both spans say which clock they read: a bag's record times and its scans' header stamps,
+  // which mote replay prints, can be hours apart (the DIS bag: 6,300 s).
   std::ostringstream duration;
-  duration << std::fixed << std::setprecision(3) << info.end - info.start << " s (from "
-           << std::setprecision(3) << info.start << " to " << info.end << ")";
+  duration << std::fixed << std::setprecision(3) << info.end - info.start << " s of "
+           << info.time_source << " (from " << info.start << " to " << info.end << ")";
+  std::ostringstream scan_stamps;
+  scan_stamps << std::fixed << std::setprecision(3) << info.scan_first << " to " << info.scan_last
+              << " (" << info.stamp_source << ", the times mote replay prints)";
   out << "log\n";
   for (const std::string& f : info.files) row(out, "file", f);
   row(out, "format", info.format);
@@ -80,6 +91,7 @@ void print_log_info(std::ostream& out, const LogInfo& info) {
   }
   out << "laser\n";
   row(out, "scans", std::to_string(info.scans) + " with odometry");
+  if (info.scans > 0) row(out, "scan stamps", scan_stamps.str());
   row(out, "beams", std::to_string(info.beams));
   const double fov = std::abs(info.angle_increment) * static_cast<double>(info.beams);
   row(out, "field of view",

@@ -67,6 +67,7 @@ LogInfo count_carmen(const std::filesystem::path& path) {
   }
   LogInfo info;
   info.format = "CARMEN log";
+  info.time_source = "ipc_timestamp";
   info.storage = "text";
   info.files = {path.string()};
   c.fill(info);
@@ -85,6 +86,7 @@ class Ros1Counter {
     }
     LogInfo info;
     info.format = "ROS 1 bag 2.0";
+    info.time_source = "record times";
     info.storage = "rosbag 2.0";
     info.files = {name_};
     for (const std::string& c : compressions_) {
@@ -136,6 +138,7 @@ LogInfo count_ros2(const std::filesystem::path& path, const ReaderOptions& optio
   Counter c;
   LogInfo info;
   info.format = std::filesystem::is_directory(path) ? "ROS 2 rosbag2 folder" : "ROS 2 recording";
+  info.time_source = "record times";
   std::set<std::string> compressions;
   for (const auto& s : storages) {
     info.files.push_back(s->name());

@@ -2,10 +2,14 @@
 // YAML loader (warnings for unknown keys become Python warnings).
 #include <pybind11/stl.h>
 
+#include <array>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "bindings.hpp"
+#include "mote/core/did_you_mean.hpp"
 #include "mote/engine/localizer_config.hpp"
 
 namespace mote::python {
@@ -67,13 +71,27 @@ namespace {
   X(grain)
 // clang-format on
 
+#define MOTE_FIELD_NAME(name) std::string_view{#name},
+constexpr std::array kFieldNames{MOTE_CONFIG_FIELDS(MOTE_FIELD_NAME)};
+#undef MOTE_FIELD_NAME
+
+// "LocalizerConfig has no field 'max_particle' (did you mean 'max_particles'?)", as the tool
+// says of a misspelled flag or key.
+std::string unknown_field(const std::string& name) {
+  std::string message = "LocalizerConfig has no field '";
+  message.append(name).append("'");
+  const std::string near = closest_word(name, kFieldNames);
+  if (!near.empty()) message.append(" (did you mean '").append(near).append("'?)");
+  return message;
+}
+
 LocalizerConfig config_from(const LocalizerConfig& base, const py::kwargs& fields) {
   LocalizerConfig c = base;
   const py::object self = py::cast(&c, py::return_value_policy::reference);
   for (const auto& [key, value] : fields) {
     const auto name = key.cast<std::string>();
     if (name.starts_with("_") || !py::hasattr(self, name.c_str()))
-      throw py::type_error("LocalizerConfig has no field '" + name + "'");
+      throw py::type_error(unknown_field(name));
     self.attr(name.c_str()) = value;
   }
   return c;
@@ -137,6 +155,14 @@ void bind_config(py::module_& m) {
     return names;
   });
 
+  m.def(
+      "_closest_word",
+      [](const std::string& word, const std::vector<std::string>& candidates) {
+        return closest_word(word, candidates);
+      },
+      py::arg("word"), py::arg("candidates"),
+      "The candidate a misspelled word most likely meant, or '' (the tool's did-you-mean rule: "
+      "edit distance within a third of the word's length, at least 2).");
   m.def("nav2_defaults", &nav2_defaults, "nav2_amcl's defaults (500-2000 particles, no recovery).");
   m.def(
       "load_config",

@@ -52,6 +52,23 @@ def test_config_keywords():
     assert c.replace(seed=7).seed == 7 and c.seed == 42
 
 
+def test_a_misspelled_keyword_says_what_it_meant(tmp_path):
+    # As the tool does for a flag or a config key: the nearest name, not a list of signatures.
+    with pytest.raises(TypeError, match=r"no field 'max_particle' \(did you mean 'max_particles'\?\)"):
+        mote.LocalizerConfig(max_particle=1000)
+    with pytest.raises(TypeError, match=r"no field 'sede' \(did you mean 'seed'\?\)"):
+        mote.LocalizerConfig().replace(sede=1)
+    with pytest.raises(TypeError, match=r"^replay\(\) got an unexpected keyword argument 'particels' "
+                       r"\(did you mean 'particles'\?\)$"):
+        mote.replay(map=FLOORPLAN, log=tmp_path / "never-read.clf", particels=5000)
+    with pytest.raises(TypeError, match=r"'lenent' \(did you mean 'lenient'\?\)"):
+        mote.open_log(tmp_path / "never-read.clf", lenent=True)
+    # A word far from every keyword gets no guess.
+    with pytest.raises(TypeError, match=r"argument 'colour'$"):
+        mote.load_map(FLOORPLAN, colour=1)
+    assert mote.replay.__doc__.startswith("replay(*, map")  # the wrapper keeps the signature
+
+
 def test_load_config(tmp_path):
     f = tmp_path / "c.yaml"
     f.write_text("max_particles: 3000\nalpha2: 0.1\n")

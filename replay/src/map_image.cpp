@@ -104,22 +104,33 @@ void polyline(RgbImage& img, const Projection& at, std::span<const logs::Stamped
   }
 }
 
+bool lost_at(const MapOverlay& o, std::size_t k) {
+  return o.states.size() == o.estimate.size() && o.states[k] == LocalizationState::kLost;
+}
+
 void draw_paths(RgbImage& img, const Projection& at, const MapOverlay& o, const style::Strokes& s) {
-  const auto all = [](std::size_t) { return true; };
-  polyline(img, at, o.reference, s.reference, style::kReference, all);
-  polyline(img, at, o.estimate, s.estimate, style::kEstimate, all);
-  if (o.states.size() == o.estimate.size()) {
-    polyline(img, at, o.estimate, s.lost, style::kLost,
-             [&](std::size_t k) { return o.states[k] == LocalizationState::kLost; });
+  polyline(img, at, o.reference, s.reference, style::kReference, [](std::size_t) { return true; });
+  // Joined from the settled pose on; the poses before it as dots.
+  const auto joined = [&](std::size_t k) { return k > o.settled; };
+  polyline(img, at, o.estimate, s.estimate, style::kEstimate, joined);
+  polyline(img, at, o.estimate, s.lost, style::kLost,
+           [&](std::size_t k) { return joined(k) && lost_at(o, k); });
+  for (std::size_t k = 0; k < std::min(o.settled, o.estimate.size()); ++k) {
+    const Point2 p = at(o.estimate[k].pose);
+    if (std::isfinite(p.x + p.y)) {
+      figure::disc(img, p.x, p.y, s.lost, lost_at(o, k) ? style::kLost : style::kEstimate);
+    }
   }
 }
 
 void draw_markers(RgbImage& img, const Projection& at, const MapOverlay& o,
                   const style::Strokes& s) {
-  if (!o.estimate.empty()) {
-    const Point2 start = at(o.estimate.front().pose);
-    const Point2 end = at(o.estimate.back().pose);
+  if (o.start || !o.estimate.empty()) {
+    const Point2 start = at(o.start.value_or(o.estimate.front().pose));
     if (std::isfinite(start.x + start.y)) draw_start_marker(img, start.x, start.y, s.marker);
+  }
+  if (!o.estimate.empty()) {
+    const Point2 end = at(o.estimate.back().pose);
     if (std::isfinite(end.x + end.y)) draw_end_marker(img, end.x, end.y, s.marker);
   }
   // The particles last: the end marker sits where they are.

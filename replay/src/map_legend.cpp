@@ -66,6 +66,10 @@ void draw_sample(RgbImage& img, const LegendSpec& spec, LegendSample what, int x
     case LegendSample::kLost:
       figure::segment(img, x, cy, x + kSample, cy, s.lost, style::kLost);
       break;
+    case LegendSample::kUnsettled:
+      for (const double dx : {-12.0, 0.0, 12.0})
+        figure::disc(img, mid + dx, cy, s.lost, style::kEstimate);
+      break;
     case LegendSample::kParticles:
       for (const double dx : {-10.0, 0.0, 10.0}) {
         figure::disc(img, mid + dx, cy + (dx == 0.0 ? -3 : 3), s.particle, style::kParticle);
@@ -97,13 +101,16 @@ LegendSpec legend_for(const MapOverlay& overlay, double metres_per_pixel, int ce
                             lost || overlay.states.empty() ? "estimate" : "estimate (never lost)"});
   }
   if (lost) spec.entries.push_back({LegendSample::kLost, "estimate while lost"});
+  if (overlay.settled > 0 && !overlay.estimate.empty()) {
+    spec.entries.push_back({LegendSample::kUnsettled, "estimate before it settled"});
+  }
   if (!overlay.particles.empty()) {
     spec.entries.push_back({LegendSample::kParticles, "final particles"});
   }
-  if (!overlay.estimate.empty()) {
-    spec.entries.push_back({LegendSample::kStart, "start"});
-    spec.entries.push_back({LegendSample::kEnd, "end"});
+  if (overlay.start || !overlay.estimate.empty()) {
+    spec.entries.push_back({LegendSample::kStart, overlay.start_label});
   }
+  if (!overlay.estimate.empty()) spec.entries.push_back({LegendSample::kEnd, "end"});
   // A round length of 60 to 150 pixels.
   const std::vector<double> t = figure::ticks(0.0, 120.0 * metres_per_pixel, 3);
   spec.scale_bar_m = t.size() > 1 ? t[1] : 120.0 * metres_per_pixel;

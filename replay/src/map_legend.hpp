@@ -9,7 +9,16 @@
 
 namespace mote::replay {
 
-enum class LegendSample { kReference, kEstimate, kLost, kParticles, kStart, kEnd, kScaleBar };
+enum class LegendSample {
+  kReference,
+  kEstimate,
+  kLost,
+  kUnsettled,
+  kParticles,
+  kStart,
+  kEnd,
+  kScaleBar
+};
 
 struct LegendEntry {
   LegendSample sample;

@@ -23,20 +23,22 @@ Eigen::Matrix3d initial_covariance(const ReplayOptions& options) {
 
 // kAuto starts at the reference pose of the first scan (nearest stamp, else the first reference
 // pose), so tracking runs can be scored from their first update; without a reference it is global.
-void initialize(Localizer& filter, const ReplayOptions& options,
+// Returns true for a global start.
+bool initialize(Localizer& filter, const ReplayOptions& options,
                 const std::vector<logs::StampedPose>& sorted_reference, double first_stamp) {
   if (options.init == InitMode::kPose) {
     filter.initialize(options.init_pose, initial_covariance(options));
-    return;
+    return false;
   }
   if (options.init == InitMode::kGlobal || sorted_reference.empty()) {
     filter.initialize_global();
-    return;
+    return true;
   }
   const auto match =
       logs::match_reference(sorted_reference, first_stamp, options.metrics.match_tolerance_s);
   const Pose2 start = match ? match->pose : sorted_reference.front().pose;
   filter.initialize(start, initial_covariance(options));
+  return false;
 }
 
 void record_update(ReplayResult& result, const Localizer& filter, double stamp) {
@@ -91,7 +93,7 @@ void run_frames(ReplayResult& result, Localizer& filter, logs::ScanSource& sourc
     if (result.scans == 0) {
       result.first_stamp = frame->stamp;
       result.laser_range_max = frame->scan.range_max;
-      initialize(filter, options, sorted_reference, frame->stamp);
+      result.global_start = initialize(filter, options, sorted_reference, frame->stamp);
     }
     ++result.scans;
     filter.update(frame->odometry, frame->scan);
@@ -158,6 +160,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
 
   result.reader = source->stats();
   result.laser_range_max_source = source->range_max_source();
+  result.stamp_source = source->stamp_source();
   result.final_particles = particle_poses(filter);
   if (!result.reference.empty()) {
     MetricOptions metrics = options.metrics;

@@ -102,6 +102,7 @@ void write_states(JsonWriter& json, const ReplayResult& r) {
   json.member("particles", std::uint64_t{r.global_set.particles});
   json.member("per_bin", r.global_set.per_bin);
   json.member("capped", r.global_set.capped);
+  json.member("global_start", r.global_start);
   json.end_object();
 }
 
@@ -325,11 +326,8 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "particles (mean)", str(f.particles_mean, 0));
   row(out, "localization", state_text(result));
   for (const auto& [name, value] : verdict_rows(judge_run(result))) row(out, name.c_str(), value);
-  if (result.global_set.capped) {
-    row(out, "global set",
-        "capped at max_particles: " + std::to_string(result.global_set.particles) + " particles, " +
-            str(result.global_set.per_bin, 2) + " per KLD bin (asked " +
-            str(result.config.global_particles_per_bin, 1) + "); raise max_particles");
+  if (const std::string capped = capped_global_set_text(result); !capped.empty()) {
+    row(out, "global set", capped);
   }
   row(out, "tempering", tempering_text(result));
   row(out, "update ms", format_ms(f.update_ms));

@@ -63,9 +63,13 @@ void write_le(std::ostream& out, std::span<const T> values) {
   write_base64(out, bytes);
 }
 
-// A finite number (with the stream's precision), else null.
+// A finite number, else null: a whole number in full (a particle count of millions would lose
+// digits to the stream's precision), any other with the stream's precision.
 void write_number(std::ostream& out, double v) {
-  if (std::isfinite(v)) {
+  constexpr double kExactInteger = 9.0e15;  // below 2^53: whole doubles are exact integers
+  if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < kExactInteger) {
+    out << static_cast<long long>(v);
+  } else if (std::isfinite(v)) {
     out << v;
   } else {
     out << "null";
@@ -170,7 +174,9 @@ void write_map(std::ostream& out, const OccupancyGrid& map, const CellBox& box) 
       cells.push_back(static_cast<std::uint8_t>(map.at({u, v})));
   }
   out << "\"map\":{\"width\":" << width << ",\"height\":" << height << ",\"u0\":" << box.u0
-      << ",\"v0\":" << box.v0 << ",\"resolution\":" << map.resolution() << ",\"cells\":";
+      << ",\"v0\":" << box.v0 << ",\"resolution\":" << map.resolution()
+      << ",\"origin_x\":" << map.origin().x << ",\"origin_y\":" << map.origin().y
+      << ",\"origin_yaw\":" << map.origin().theta << ",\"cells\":";
   write_base64(out, cells);
   out << '}';
 }
@@ -210,6 +216,19 @@ std::vector<double> position_errors(const ReplayResult& result) {
   return errors;
 }
 
+// The page's code of a state: the index into its STATES table (viewer_script.cpp).
+double state_code(LocalizationState state) {
+  switch (state) {
+    case LocalizationState::kTracking:
+      return 0.0;
+    case LocalizationState::kUncertain:
+      return 1.0;
+    case LocalizationState::kLost:
+      return 2.0;
+  }
+  return 1.0;
+}
+
 void write_statistics(std::ostream& out, const ReplayResult& result) {
   const std::vector<UpdateRecord>& u = result.updates;
   const std::size_t n = u.size();
@@ -226,7 +245,11 @@ void write_statistics(std::ostream& out, const ReplayResult& result) {
   write_array(out, "ess", n, [&](std::size_t k) { return u[k].effective_sample_size; });
   write_array(out, "injected", n,
               [&](std::size_t k) { return static_cast<double>(u[k].injected); });
+  write_array(out, "relocalized", n,
+              [&](std::size_t k) { return static_cast<double>(u[k].relocalized); });
   write_array(out, "tempering", n, [&](std::size_t k) { return u[k].tempering; });
+  write_array(out, "state", n, [&](std::size_t k) { return state_code(u[k].state); });
+  write_array(out, "misfit", n, [&](std::size_t k) { return u[k].misfit; });
   const std::vector<double> errors = position_errors(result);
   write_array(out, "error_m", n, [&](std::size_t k) { return errors[k]; });
 }
@@ -250,7 +273,8 @@ void write_viewer_page(std::ostream& out, const ReplayResult& result,
   out << kViewerPageHead << "<script id=\"mote-data\" type=\"application/json\">{";
   out.precision(6);
   write_map(out, result.map, visited_cells(result, recording));
-  out << ",\"per_cell\":" << grid.per_cell() << ",\"threads\":" << result.threads << ",\"model\":";
+  out << ",\"per_cell\":" << grid.per_cell() << ",\"threads\":" << result.threads
+      << ",\"lost_misfit\":" << result.config.lost_misfit << ",\"model\":";
   write_string(out, model_name(result.config.laser_model_type));
   out << ",\"t0\":";
   write_string(out, std::to_string(result.first_stamp));
@@ -272,7 +296,9 @@ void write_viewer_page(std::ostream& out, const ReplayResult& result,
   write_le<std::uint32_t>(out, recording.heavy_cluster_end);
   out << ",\"cluster_uvw\":";
   write_le<std::uint16_t>(out, recording.heavy_clusters);
-  out << "}</script>\n<script>\n" << kViewerScript << "</script>\n</body>\n</html>\n";
+  out << "}</script>\n<script>\n";
+  for (const std::string_view part : viewer_script_parts()) out << part;
+  out << "</script>\n</body>\n</html>\n";
 }
 
 void write_viewer_html(const std::filesystem::path& path, const ReplayResult& result,

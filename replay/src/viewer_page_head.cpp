@@ -1,4 +1,4 @@
-// viewer.html's head, style sheet and elements (the script is in viewer_script.cpp).
+// viewer.html's head, style sheet and elements (the script is in viewer_script*.cpp).
 #include "viewer_template.hpp"
 
 namespace mote::replay {
@@ -11,18 +11,22 @@ const std::string_view kViewerPageHead = R"html(<!doctype html>
 <style>
 body { font: 13px system-ui, sans-serif; margin: 8px; background: #f4f4f4; color: #222; }
 header { display: flex; gap: 10px; align-items: center; margin-bottom: 4px; }
-#slider { flex: 1; max-width: 700px; }
+#slider { flex: 1; min-width: 120px; max-width: 700px; }
 #info, #counts { font-variant-numeric: tabular-nums; white-space: pre-wrap; }
 #layout { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; margin-top: 4px; }
-#counts { margin-bottom: 4px; font-size: 12px; line-height: 17px; }
+#counts { margin-bottom: 4px; font-size: 12px; line-height: 17px; height: 85px; overflow: hidden; }
 .key { font-size: 12px; line-height: 16px; margin-top: 4px; white-space: nowrap; overflow: hidden; }
 .key i { display: inline-block; width: 10px; height: 10px; margin: 0 3px 0 8px; }
 .key i:first-child { margin-left: 0; }
+#state-key { margin-left: 52px; }
+#state-key .key { white-space: normal; }
+#state-now { font-weight: bold; }
 #error { background: #b00; color: #fff; padding: 6px; margin-bottom: 6px; }
 #legend span { margin-right: 14px; }
 #legend i { display: inline-block; width: 10px; height: 10px; margin-right: 4px; }
 canvas { display: block; background: #fff; }
-#timelines canvas { cursor: pointer; }
+#map-column canvas { background: none; }
+#timelines canvas, #band { cursor: pointer; }
 </style>
 </head>
 <body>
@@ -34,14 +38,18 @@ canvas { display: block; background: #fff; }
 </header>
 <div id="legend">
 <span><i style="background:#ff00ff"></i>estimate</span>
-<span><i style="background:#dc1414"></i>estimated trajectory</span>
+<span><i id="trajectory-swatch"></i>estimated trajectory (colour: state, key under the map)</span>
 <span><i style="background:#6ed26e"></i>reference</span>
 <span><i style="background:#285aff"></i>particles (shade: weight)</span>
-<span><i style="background:#ff8c00"></i>scan endpoints from the estimate</span>
+<span><i style="background:#009988"></i>scan endpoints from the estimate</span>
 <span><i style="border:2px solid #7b2cbf;border-radius:50%;width:6px;height:6px"></i>other clusters (area: weight)</span>
 </div>
 <div id="layout">
+<div id="map-column">
 <canvas id="map"></canvas>
+<canvas id="band"></canvas>
+<div id="state-key"></div>
+</div>
 <div id="side">
 <div id="counts"></div>
 <div id="timelines"></div>

@@ -196,5 +196,43 @@ TEST(ViewerPage, EmbedsTheDataInOneScriptBlock) {
   EXPECT_LT(estimate.y, embedded.v0 + embedded.height);
 }
 
+// What the page's state band, trajectory colours, misfit timeline and re-localization marks are
+// drawn from: the state as the page's code (0 tracking, 1 uncertain, 2 lost), the misfit and the
+// particles a re-localization added, apart from augmented MCL's injected ones, counts in full.
+TEST(ViewerPage, CarriesStatesMisfitsAndReLocalizedCounts) {
+  const OccupancyGrid map = room({-2.0, 1.0, 0.0});
+  LocalizerConfig config;
+  config.min_particles = config.max_particles = 100;
+  config.threads = 1;
+  config.lost_misfit = 0.7;
+  Localizer filter(map, config);
+  filter.initialize({3.0, 4.0, 0.0}, Eigen::Matrix3d::Identity() * 0.01);
+  const logs::ScanFrame frame = frame_at_start();
+  ASSERT_TRUE(filter.update(frame.odometry, frame.scan));
+  ReplayResult result(map, config);
+  ViewerRecorder recorder(map);
+  const std::array states{LocalizationState::kLost, LocalizationState::kUncertain,
+                          LocalizationState::kTracking};
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    UpdateRecord update;
+    update.stamp = static_cast<double>(k);
+    update.state = states[k];
+    update.misfit = 0.25 * static_cast<double>(k + 1);
+    update.relocalized = k == 1 ? 1234567 : 0;  // more digits than the stream's precision
+    update.injected = k == 2 ? 7 : 0;
+    result.updates.push_back(update);
+    result.trajectory.push_back({update.stamp, filter.estimate().best().mean});
+    recorder.record(filter, frame);
+  }
+  std::ostringstream out;
+  write_viewer_page(out, result, recorder.recording());
+  const std::string page = out.str();
+  for (const char* key :
+       {"\"state\":[2,1,0]", "\"misfit\":[0.25,0.5,0.75]", "\"relocalized\":[0,1234567,0]",
+        "\"injected\":[0,0,7]", "\"lost_misfit\":0.7,",
+        "\"origin_x\":-2,\"origin_y\":1,\"origin_yaw\":0,"})
+    EXPECT_NE(page.find(key), std::string::npos) << key;
+}
+
 }  // namespace
 }  // namespace mote::replay

@@ -37,8 +37,8 @@ replay::ReplayResult replay_and_report(replay::ReplayOptions options,
                                        const replay::ReportOptions& report = {},
                                        bool viewer = false);
 
-/// The verdict on a finished run: prints "mote COMMAND: warning: ..." on stderr and returns
-/// replay::kExitEndsLost when it ends lost, else returns 0.
+/// The verdict on a finished run: prints "mote COMMAND: warning: ..." on stderr when it is not
+/// localized (ends lost, or unsure) and returns its replay::exit_status.
 int warn_unless_localized(const char* command, const replay::ReplayResult& result);
 
 }  // namespace mote::tool

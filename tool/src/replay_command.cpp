@@ -188,9 +188,10 @@ replay::ReplayResult replay_and_report(replay::ReplayOptions options,
 
 int warn_unless_localized(const char* command, const replay::ReplayResult& result) {
   const replay::RunVerdict verdict = replay::judge_run(result);
-  if (verdict.localized) return 0;
-  std::cerr << "mote " << command << ": warning: " << verdict.warning << '\n';
-  return replay::kExitEndsLost;
+  if (!verdict.warning.empty()) {
+    std::cerr << "mote " << command << ": warning: " << verdict.warning << '\n';
+  }
+  return replay::exit_status(verdict);
 }
 
 int replay_command(std::span<char* const> words) {

@@ -28,16 +28,20 @@ struct LogInfo {
   std::string compression;         ///< chunk compressions ("lz4", "zstd, lz4"), "none" or ""
   std::string index;               ///< how it was read (MCAP: summary or linear scan)
   std::vector<std::string> files;  ///< the storage files
-  double start = 0.0;              ///< s, first message time (receive time for ROS)
+  double start = 0.0;              ///< s, first message time (record time for ROS)
   double end = 0.0;                ///< s, last message time
+  std::string time_source;         ///< what start and end are: "record times", "ipc_timestamp"
   std::size_t messages = 0;
   std::vector<TopicCount> topics;
   std::vector<std::string> frames;  ///< tf edges, "parent -> child" (+ " (static)")
   // The laser, from the frames the replay reads:
-  std::size_t scans = 0;   ///< scan frames with odometry
-  std::size_t beams = 0;   ///< of the first scan
-  double angle_min = 0.0;  ///< rad, in the laser frame, first scan
-  double angle_max = 0.0;  ///< rad
+  std::size_t scans = 0;     ///< scan frames with odometry
+  double scan_first = 0.0;   ///< s, the first scan frame's stamp (ScanFrame::stamp)
+  double scan_last = 0.0;    ///< s, the last one's
+  std::string stamp_source;  ///< what those stamps are (ScanSource::stamp_source)
+  std::size_t beams = 0;     ///< of the first scan
+  double angle_min = 0.0;    ///< rad, in the laser frame, first scan
+  double angle_max = 0.0;    ///< rad
   double angle_increment = 0.0;
   double range_min = 0.0;  ///< m
   double range_max = 0.0;  ///< m

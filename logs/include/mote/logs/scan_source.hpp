@@ -75,6 +75,10 @@ class ScanSource {
   [[nodiscard]] virtual std::string range_max_source() const {
     return "recorded in the log's scan messages";
   }
+  /// What the frames' stamps are, for reports that print times: the scans' own "header.stamp"
+  /// for ROS (a bag's record times, which `mote info`'s duration spans, can differ by hours);
+  /// CARMEN: "ipc_timestamp".
+  [[nodiscard]] virtual std::string stamp_source() const { return "header.stamp"; }
 };
 
 /// Opens a CARMEN log (.clf, .log). Throws InputError if the file cannot be opened.

@@ -3,12 +3,15 @@
 /// map.png: the occupancy grid (free white, occupied black, unknown grey) cropped to the region
 /// of interest and scaled up when the map is small, with the reference trajectory (wide, light
 /// green, under), the estimated trajectory (thin red on top, orange where the filter was lost),
-/// the final particles (blue dots), the start (ring) and end (square) of the estimate; around it
+/// the final particles (blue dots), the start (ring) and end (square); the estimate before the
+/// filter settled as separate dots (a global start's estimates jump between places); around it
 /// axes in metres, and below a legend and a scale bar.
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "mote/core/pose.hpp"
@@ -28,6 +31,12 @@ struct MapOverlay {
   /// The localization state after each estimate pose's update (empty, or one per estimate pose):
   /// segments ending at a lost update are drawn orange.
   std::span<const LocalizationState> states;
+  /// Estimate poses before this index are drawn as separate dots, not joined: before the filter
+  /// settles its estimate jumps between places, and a line between them would cross walls.
+  std::size_t settled = 0;
+  /// Where the start marker goes (nullopt: the estimate's first pose) and its legend label.
+  std::optional<Pose2> start{};
+  std::string start_label = "start";
 };
 
 /// Rendering choices.

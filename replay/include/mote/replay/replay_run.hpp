@@ -94,12 +94,13 @@ struct ReplayResult {
   /// An empty result for a run on `grid` with `cfg`.
   ReplayResult(OccupancyGrid grid, LocalizerConfig cfg) : map(std::move(grid)), config(cfg) {}
 
-  OccupancyGrid map;         ///< the map the run used
-  LocalizerConfig config;    ///< the config it ran with
-  int threads = 0;           ///< threads the filter ran on
-  GlobalSetSize global_set;  ///< what a global start or a re-localization draws
-  std::size_t scans = 0;     ///< scan frames read
-  double first_stamp = 0.0;  ///< s, stamp of the first scan
+  OccupancyGrid map;          ///< the map the run used
+  LocalizerConfig config;     ///< the config it ran with
+  int threads = 0;            ///< threads the filter ran on
+  GlobalSetSize global_set;   ///< what a global start or a re-localization draws
+  bool global_start = false;  ///< the filter started globally (drew global_set at the start)
+  std::size_t scans = 0;      ///< scan frames read
+  double first_stamp = 0.0;   ///< s, stamp of the first scan
   /// The estimate after every update that ran: the heaviest cluster's mean matched to the map
   /// (LocalizationEstimate::refined).
   std::vector<logs::StampedPose> trajectory;
@@ -109,9 +110,10 @@ struct ReplayResult {
   std::string first_unusual_reason;                    ///< reason of the first non-normal outcome
   logs::ReadStats reader;                              ///< what the log reader skipped
   float laser_range_max = 0.0F;  ///< m, range_max of the first scan (the laser's no-return value)
-  std::string laser_range_max_source;        ///< where it came from (ScanSource::range_max_source)
-  std::vector<logs::StampedPose> reference;  ///< the reference trajectory (may be empty)
-  std::optional<TrajectoryErrors> errors;    ///< with a reference
+  std::string laser_range_max_source;  ///< where it came from (ScanSource::range_max_source)
+  std::string stamp_source;            ///< what the stamps above are (ScanSource::stamp_source)
+  std::vector<logs::StampedPose> reference;         ///< the reference trajectory (may be empty)
+  std::optional<TrajectoryErrors> errors;           ///< with a reference
   std::optional<TrajectoryErrors> particle_errors;  ///< of particle_trajectory, with a reference
   std::optional<KidnapRecovery> kidnap;             ///< with a reference and kidnapped_at
   std::vector<Pose2> final_particles;               ///< the particle cloud after the last scan

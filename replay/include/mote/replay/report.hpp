@@ -5,7 +5,9 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <span>
 
+#include "mote/replay/map_image.hpp"
 #include "mote/replay/metrics.hpp"
 #include "mote/replay/replay_run.hpp"
 
@@ -50,6 +52,19 @@ void print_summary(std::ostream& out, const ReplayResult& result,
 /// scan_fit, log_evidence, injected, resampled, alpha1..alpha4, total_ms. Throws mote::Error when
 /// it cannot be written.
 void write_updates_csv(const std::filesystem::path& file, const ReplayResult& result);
+
+/// Tracking updates in a row from which map.png joins the estimate into a line.
+inline constexpr std::size_t kSettledUpdates = 5;
+
+/// The first update from which the run tracked kSettledUpdates updates in a row (or to its end):
+/// where the filter settled. updates.size() when it never did.
+[[nodiscard]] std::size_t settled_index(const ReplayResult& result);
+
+/// map.png's overlay for a run: the estimate joined from settled_index on, and the start marker
+/// where the robot started (the reference pose of the first scan) or, for a global start
+/// without a reference, at the first settled estimate, labelled so; `states` is one per update.
+[[nodiscard]] MapOverlay map_overlay(const ReplayResult& result,
+                                     std::span<const LocalizationState> states);
 
 /// Creates the output folder `dir` if needed. Throws mote::Error naming it when it is a file or
 /// cannot be made, so that a command can check it before a replay that takes minutes.

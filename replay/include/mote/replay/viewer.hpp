@@ -4,7 +4,7 @@
 /// JavaScript, no network) that replays the filter over the map: per update the particles, the
 /// scan endpoints from the estimate, the estimate and the reference so far, and timelines of the
 /// update's statistics. The ViewerRecorder keeps what the page needs after each update, small
-/// enough for a whole log (Intel, 910 updates: 5.5 MB of page with the defaults, 16.3 MB with
+/// enough for a whole log (Intel, 910 updates: 5.6 MB of page with the defaults, 16.3 MB with
 /// more than kViewerParticles particles at every update; the bound is 20 MB): positions in
 /// 16-bit fixed point of the map's extent, at most kViewerParticles particles per update.
 

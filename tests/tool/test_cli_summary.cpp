@@ -1,0 +1,116 @@
+// The replay summary's words on runs a user makes on the first day: "tracking since" after a
+// wrong start, a run that ends lost on its last few updates, and a start from a known pose.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "cli_test_util.hpp"
+#include "mote_test/data.hpp"
+
+namespace mote_cli_test {
+namespace {
+
+// The summary row `name` (its value, after the padded name), or "" when absent.
+std::string summary_row(const std::string& out, const std::string& name) {
+  const auto at = out.find("\n  " + name + " ");
+  if (at == std::string::npos) return "";
+  const auto value = out.find_first_not_of(' ', at + 3 + name.size());
+  return out.substr(value, out.find('\n', value) - value);
+}
+
+// Intel started at a wrong place: the filter re-localizes at 5.5 s, reads tracking on two
+// updates 14-19 m off, uncertain at 9.3 and 11.0 s, and tracks from 12.7 s to the end. The
+// summary says the last stretch, not the first tracking update.
+TEST(CliSummary, TrackingSinceIsTheLastUnbrokenStretchAfterAWrongStart) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  const fs::path out = scratch("intel-wrong-start");
+  const Outcome o =
+      mote("replay --map '" + yaml.string() + "' --log '" + (data / "intel.clf").string() +
+           "' --reference '" + (data / "intel.gt.tum").string() +
+           "' --init-pose 5,-20,1.5 --out '" + out.string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_EQ(summary_row(o.out, "localized"), "yes, tracking since 12.7 s") << o.out;
+  EXPECT_NEAR(json_number(slurp(out / "report.json"), "tracking_since_s"), 12.72, 0.01);
+  // From a known pose and Intel's map, no global set was capped: no advice to raise it.
+  EXPECT_EQ(o.out.find("raise max_particles"), std::string::npos) << o.out;
+}
+
+// Wean from a global start ends in the cluttered room the map does not show, its last updates
+// lost. Whatever the filter reads there, "localized" never says yes beside "ends lost", and the
+// exit status matches the words (3 only for NO).
+TEST(CliSummary, LocalizedNeverContradictsTheEndState) {
+  MOTE_REQUIRE_DATA(yaml, "wean/wean_map.yaml");
+  const fs::path out = scratch("wean-end");
+  const Outcome o = mote("replay --map '" + yaml.string() + "' --log '" +
+                         (yaml.parent_path() / "robotdata1.clf").string() +
+                         "' --init global --seed 1 --out '" + out.string() + "'");
+  const std::string ends = summary_row(o.out, "localization");
+  const std::string localized = summary_row(o.out, "localized");
+  ASSERT_FALSE(localized.empty()) << o.out << o.err;
+  // Seed 1 ends lost on its last 4 updates (replay/verdict.hpp: unsure).
+  ASSERT_NE(ends.find("ends lost"), std::string::npos) << o.out;
+  EXPECT_NE(localized.rfind("unsure: ", 0), std::string::npos) << localized;
+  EXPECT_EQ(localized.find("yes"), std::string::npos) << localized;
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.err.find("mote replay: warning: the last 4 updates are lost"), std::string::npos)
+      << o.err;
+  const std::string report = slurp(out / "report.json");
+  EXPECT_NE(report.find("\"localized\": false"), std::string::npos);
+  EXPECT_NE(report.find("\"unsure\": true"), std::string::npos);
+}
+
+// With 2000 particles the Intel map's global set is capped. Started at the reference's first pose
+// the run draws none and gets no advice to raise max_particles; started globally it is told which
+// draws were capped.
+TEST(CliSummary, TheCappedGlobalSetIsReportedOnlyWhenTheRunDrewIt) {
+  MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
+  const fs::path data = yaml.parent_path();
+  const std::string run = "replay --map '" + yaml.string() + "' --log '" +
+                          (data / "intel.clf").string() + "' --reference '" +
+                          (data / "intel.gt.tum").string() + "' --max-particles 2000 --out '" +
+                          scratch("intel-capped").string() + "'";
+  const Outcome known = mote(run);
+  ASSERT_EQ(known.status, 0) << known.err;
+  EXPECT_EQ(summary_row(known.out, "global set"), "") << known.out;
+  const Outcome global = mote(run + " --init global");
+  ASSERT_EQ(global.status, 0) << global.err;
+  EXPECT_NE(summary_row(global.out, "global set")
+                .rfind("capped at max_particles for the global start", 0),
+            std::string::npos)
+      << global.out;
+}
+
+// The DIS bag's scan header stamps run 6,300 s before its record times. `mote info` gives both
+// spans and says which is which; the replay's final pose says its stamp is a header stamp, and
+// falls inside the span `mote info` names for those.
+TEST(CliSummary, InfoAndTheSummarySayWhichTimeTheyPrint) {
+  MOTE_REQUIRE_DATA(yaml, "dis/dis_underground.yaml");
+  const fs::path bag = yaml.parent_path() / "dis-underground.bag";
+  const Outcome info = mote("info '" + bag.string() + "'");
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_NE(info.out.find("duration          110.471 s of record times (from 1510763707.057 to "
+                          "1510763817.528)"),
+            std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("scan stamps       1510757286.109 to 1510757396.490 (header.stamp, "
+                          "the times mote replay prints)"),
+            std::string::npos)
+      << info.out;
+  const fs::path out = scratch("dis-stamps");
+  const Outcome o = mote("replay --map '" + yaml.string() + "' --log '" + bag.string() +
+                         "' --out '" + out.string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  const std::string pose = summary_row(o.out, "final pose");
+  const std::string suffix = " s (header.stamp)";
+  ASSERT_GT(pose.size(), suffix.size()) << o.out;
+  EXPECT_EQ(pose.substr(pose.size() - suffix.size()), suffix) << pose;
+  const double stamp = std::strtod(pose.c_str() + pose.rfind(" at ") + 4, nullptr);
+  EXPECT_GE(stamp, 1510757286.109) << pose;
+  EXPECT_LE(stamp, 1510757396.490) << pose;
+}
+
+}  // namespace
+}  // namespace mote_cli_test
