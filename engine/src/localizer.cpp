@@ -73,14 +73,14 @@ void Localizer::Impl::keep_kld_prefix() {
   store.set_uniform_weights();
 }
 
-void Localizer::Impl::start_fresh() {
+void Localizer::Impl::start_fresh(bool settled) {
   step = 0;
   has_odometry = false;
   degenerate = false;
   updates_since_resample = 0;
   recovery.reset();
   monitor.reset();
-  reset_relocalization();
+  reset_relocalization(settled);
   focus_judged = false;
   odometry_noise.reset();
   last_fix = {};
@@ -105,14 +105,14 @@ void Localizer::initialize(const Pose2& mean, const Eigen::Matrix3d& covariance)
                         s.config.seed, s.config.grain);
     if (s.config.global_particles_per_bin > 0.0) s.keep_kld_prefix();
   });
-  s.start_fresh();
+  s.start_fresh(true);
 }
 
 void Localizer::initialize_global() {
   Impl& s = *impl_;
   s.executor.run(
       [&] { initialize_uniform(s.store, s.global_count(), s.map, s.config.seed, s.config.grain); });
-  s.start_fresh();
+  s.start_fresh(false);
 }
 
 void Localizer::Impl::run_filter(const Pose2& odometry) {

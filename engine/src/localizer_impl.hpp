@@ -58,7 +58,7 @@ struct Localizer::Impl {
   // before the next motion step widens the belief by a global set when the count calls for it.
   void count_lost_updates();
   void maybe_relocalize();
-  void reset_relocalization();
+  void reset_relocalization(bool settled);
   // Whether a lost filter runs this scan although the robot has not moved (kStillScans).
   [[nodiscard]] bool still_update_due(const LaserScan& scan);
   void update_estimate();
@@ -75,7 +75,7 @@ struct Localizer::Impl {
   void adapt_motion_noise(const Pose2& odometry);
 
   // Initialization (localizer.cpp): forget everything but the map and the config.
-  void start_fresh();
+  void start_fresh(bool settled);                  // settled: around a given pose, not a global set
   [[nodiscard]] std::size_t global_count() const;  // global_particles_per_bin's count
   [[nodiscard]] double free_bins() const;          // KLD bins of free space
   void keep_kld_prefix();  // cut a fresh i.i.d. set to the KLD count of its prefix

@@ -42,8 +42,8 @@ bool RelocalizationSchedule::after_update(LocalizationState state, bool focused)
   return true;
 }
 
-void Localizer::Impl::reset_relocalization() {
-  schedule.reset();
+void Localizer::Impl::reset_relocalization(bool settled) {
+  schedule.reset(settled);
   relocalize_due = false;
   still_scans = 0;
 }

@@ -71,8 +71,11 @@ TEST(RelocalizationSchedule, AGlobalSearchThatHasNotSettledNeverRelocalizes) {
   const std::vector<int> due = due_at(s, std::vector<LocalizationState>(12, kLost), true);
   EXPECT_TRUE(s.settled());
   EXPECT_EQ(due, std::vector<int>{9});
-  s.reset();
+  s.reset(false);  // a global start
   EXPECT_FALSE(s.settled());
+  s.reset(true);  // a start around a given pose: lost there calls for a global set
+  EXPECT_TRUE(s.settled());
+  EXPECT_EQ(due_at(s, std::vector<LocalizationState>(4, kLost), false), std::vector<int>{2});
 }
 
 }  // namespace

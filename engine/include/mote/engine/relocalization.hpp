@@ -14,11 +14,13 @@ namespace mote {
 /// kFirstAfter lost updates in a row; each one doubles the wait before the next, up to
 /// kLongestWait lost updates in a row. Only a stretch of kTrackedToForgive tracking updates in a
 /// row resets the wait: a filter that flaps (lost three updates, tracking one, as on Wean's
-/// closed doors) would otherwise pay for a global set about every fourth update. Nothing is due
-/// before the belief has settled once: tracking once, or focused for kConvergedAfter updates in
-/// a row (a search that converged where the scans do not fit); before that the belief is a
-/// global search already (a global start converging, a wrong map) and a global set would only
-/// restart it.
+/// closed doors) would otherwise pay for a global set about every fourth update. After a global
+/// start nothing is due before the belief has settled once: tracking once, or focused for
+/// kConvergedAfter updates in a row (a search that converged where the scans do not fit);
+/// before that the belief is a global search already (a global start converging, a wrong map)
+/// and a global set would only restart it. A start around a given pose is settled from the
+/// first update: Intel from a wrong `--init-pose 5,-20,1.5` stayed lost 20 m off for the whole
+/// log when it had to settle first.
 class RelocalizationSchedule {
  public:
   static constexpr std::uint64_t kFirstAfter = 3;
@@ -29,8 +31,13 @@ class RelocalizationSchedule {
   /// One update's state and whether its belief was focused; true when a re-localization is due
   /// before the next motion step (the wait then starts over, doubled).
   bool after_update(LocalizationState state, bool focused) noexcept;
-  /// Forgets everything (after initialization).
-  void reset() noexcept { *this = RelocalizationSchedule{}; }
+  /// Forgets everything (after initialization). `settled`: the belief starts settled, as one
+  /// around a pose the caller gave does (a start at a wrong pose is lost there, not searching);
+  /// a global start does not.
+  void reset(bool settled) noexcept {
+    *this = RelocalizationSchedule{};
+    settled_ = settled;
+  }
 
   /// Whether the belief has settled once since the last reset().
   [[nodiscard]] bool settled() const noexcept { return settled_; }
