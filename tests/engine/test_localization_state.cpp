@@ -106,6 +106,31 @@ TEST_F(StateOnIntel, LostSoonAfterAKidnappingAndTrackingAgainOnceRelocalized) {
   EXPECT_GE(found_at, 0) << "not found again within 60 updates";
 }
 
+// A start around a wrong pose (given by the user, 20 m off) is lost there and re-localizes,
+// as a belief the user placed is settled from the first update; and no update reads
+// `tracking` while the estimate is far from the truth, before or after the re-localization.
+TEST_F(StateOnIntel, AWrongStartRelocalizesAndIsNeverTrackingFarOff) {
+  Localizer filter(*map_, config());
+  const Pose2 wrong{5.0, -20.0, 1.5};
+  filter.initialize(wrong, start_covariance());
+  test::Drive drive(*map_, kIntelStart, 13);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  int relocalized_at = -1;
+  int found_at = -1;
+  for (int k = 0; k < 60 && found_at < 0; ++k) {
+    drive.feed(filter);
+    const UpdateStats& u = filter.last_update();
+    if (relocalized_at < 0 && u.relocalized > 0) relocalized_at = k;
+    const double error = test::position_error(filter.estimate().refined.pose, drive.truth);
+    if (u.state == LocalizationState::kTracking) {
+      EXPECT_LT(error, 1.0) << "tracking " << error << " m off at update " << k;
+      if (error < 0.3) found_at = k;
+    }
+  }
+  EXPECT_GE(relocalized_at, 0) << "a wrong start never re-localized";
+  EXPECT_GT(found_at, relocalized_at) << "not found within 60 updates";
+}
+
 // Every update judged lost (a bound below any misfit): the filter re-localizes again and
 // again, each time less often, and the hypothesis that explains the scans survives each one.
 TEST_F(StateOnIntel, FalseAlarmsKeepTheHypothesisThatExplainsTheScans) {
