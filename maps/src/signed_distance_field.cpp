@@ -4,10 +4,15 @@
 #include <cmath>
 
 #include "mote/core/error.hpp"
+#include "mote/core/parallel.hpp"
 #include "mote/maps/distance_field.hpp"
+#include "mote/maps/squared_distances.hpp"
 
 namespace mote {
 namespace {
+
+// Codes hold 2 cap + 2 values in 16 bits: cap = n^2 <= 32767.
+constexpr int kMaxCodeSaturation = 181;
 
 // The grid with occupied and free swapped: its distance transform, with unknown cells as
 // obstacles, measures how deep each occupied cell lies inside its obstacle.
@@ -38,17 +43,60 @@ SignedDistanceField::SignedDistanceField(const OccupancyGrid& grid, float max_di
   // either side of it. The transforms clamp half a cell further, so that the clamp applies to
   // the distance to the surface.
   const auto half = static_cast<float>(0.5 * resolution_);
+  const int n = SquaredDistances::saturation(resolution_, max_distance + half, kMaxCodeSaturation);
+  if (n > 0) {
+    build_codes(grid, n);
+  } else {
+    build_floats(grid);
+  }
+}
+
+void SignedDistanceField::build_codes(const OccupancyGrid& grid, int saturation) {
+  const auto half = static_cast<float>(0.5 * resolution_);
+  const float clamp = max_distance_ + half;
+  const auto cap = static_cast<std::uint32_t>(saturation * saturation);
+  // DistanceField's value of a squared distance s at a clamp.
+  const auto distance = [&](std::uint32_t s, float at) {
+    return std::min(static_cast<float>(std::sqrt(static_cast<double>(s)) * resolution_), at);
+  };
+  signed_of_.resize(2 * static_cast<std::size_t>(cap) + 2);
+  unsigned_of_.resize(signed_of_.size());
+  for (std::uint32_t s = 0; s <= cap; ++s) {
+    signed_of_[s] = std::min(distance(s, clamp) - half, max_distance_);
+    unsigned_of_[s] = distance(s, max_distance_);
+    signed_of_[cap + 1 + s] = -std::min(distance(s, clamp) - half, max_distance_);
+    unsigned_of_[cap + 1 + s] = 0.0F;
+  }
+  const std::size_t cells = grid.cell_count();
+  codes_ = std::make_unique_for_overwrite<std::uint16_t[]>(cells);
+  detail::squared_distances(grid, ObstacleCells::kOccupied, saturation, codes_.get());
+  const auto inside = std::make_unique_for_overwrite<std::uint16_t[]>(cells);
+  detail::squared_distances(grid, ObstacleCells::kNotOccupied, saturation, inside.get());
+  const CellState* states = grid.cells().data();
+  par::for_each_chunk(cells, /*grain=*/1 << 16, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      if (states[k] == CellState::kOccupied) {
+        codes_[k] = static_cast<std::uint16_t>(cap + 1 + inside[k]);
+      }
+    }
+  });
+}
+
+void SignedDistanceField::build_floats(const OccupancyGrid& grid) {
+  const auto half = static_cast<float>(0.5 * resolution_);
   const DistanceField out(grid,
-                          {.unknown_is_obstacle = false, .max_distance = max_distance + half});
+                          {.unknown_is_obstacle = false, .max_distance = max_distance_ + half});
   const DistanceField in(inside_out(grid),
-                         {.unknown_is_obstacle = true, .max_distance = max_distance + half});
+                         {.unknown_is_obstacle = true, .max_distance = max_distance_ + half});
+  const DistanceField plain(grid, {.unknown_is_obstacle = false, .max_distance = max_distance_});
   const std::vector<CellState>& cells = grid.cells();
   values_.resize(cells.size());
   for (std::size_t k = 0; k < cells.size(); ++k) {
     values_[k] = cells[k] == CellState::kOccupied
-                     ? -std::min(in.distances()[k] - half, max_distance)
-                     : std::min(out.distances()[k] - half, max_distance);
+                     ? -std::min(in.distances()[k] - half, max_distance_)
+                     : std::min(out.distances()[k] - half, max_distance_);
   }
+  unsigned_ = plain.distances();
 }
 
 }  // namespace mote
