@@ -2,12 +2,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 
 #include <Eigen/Cholesky>
 
 #include "localizer_impl.hpp"
+#include "mote/core/error.hpp"
 #include "mote/engine/estimate.hpp"
 #include "mote/engine/resample.hpp"
 #include "mote/engine/tempering.hpp"
@@ -74,11 +76,18 @@ LocalizerConfig validated(LocalizerConfig c) {
   return c;
 }
 
+// A null map is refused before anything reads it.
+const OccupancyGrid& checked_map(const std::shared_ptr<const OccupancyGrid>& map) {
+  if (!map) throw ConfigError("Localizer: the map is null");
+  return *map;
+}
+
 }  // namespace
 
-Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
+Localizer::Impl::Impl(std::shared_ptr<const OccupancyGrid> grid, LocalizerConfig cfg)
     : config(validated(std::move(cfg))),
-      map(grid),
+      map_owner(std::move(grid)),
+      map(checked_map(map_owner)),
       executor(config.threads),
       motion(make_motion(config)),
 
@@ -348,7 +357,7 @@ void Localizer::Impl::judge_localization() {
     stats.hit_share = stats.see_through = std::numeric_limits<double>::quiet_NaN();
   } else {
     stats.hit_share = match.hit_share;
-    const FieldWalker walk(map, field->field);
+    const FieldWalker walk(map, field->signed_field);
     stats.see_through = see_through_share(beams, match.pose, walk, 2.0 * config.sigma_hit);
   }
   stats.state = monitor.update(stats.see_through, stats.hit_share, best.weight);

@@ -37,7 +37,7 @@ void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& 
   states.reserve(result.updates.size());
   for (const UpdateRecord& u : result.updates) states.push_back(u.state);
   const MapOverlay overlay{result.reference, result.trajectory, result.final_particles, states};
-  write_map_png(dir / "map.png", result.map, overlay);
+  write_map_png(dir / "map.png", result.map(), overlay);
 }
 
 }  // namespace mote::replay

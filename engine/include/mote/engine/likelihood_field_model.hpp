@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 
 #include "mote/engine/beams.hpp"
 #include "mote/engine/localizer_config.hpp"
@@ -14,6 +15,7 @@
 #include "mote/maps/distance_field.hpp"
 #include "mote/maps/likelihood_table.hpp"
 #include "mote/maps/occupancy_grid.hpp"
+#include "mote/maps/squared_distances.hpp"
 
 namespace mote {
 
@@ -32,7 +34,8 @@ struct LikelihoodFieldParams {
 /// log(1 + sum pz^3). Endpoints off the map read the value at max_distance, as in amcl.
 class LikelihoodFieldModel {
  public:
-  /// Computes the distance field of the grid (clamped at max_distance).
+  /// Computes the distance field of the grid's obstacle surfaces (clamped at max_distance): 2
+  /// bytes per cell up to 255 cells of max_distance, 4 beyond.
   LikelihoodFieldModel(const OccupancyGrid& grid, const LikelihoodFieldParams& params);
 
   /// Builds the table for the scan's range_max (z_rand / z_max depends on it); a no-op when it
@@ -52,7 +55,9 @@ class LikelihoodFieldModel {
                    const ParticleView& particles, std::size_t begin, std::size_t end) const;
 
   LikelihoodFieldParams params_;
-  DistanceField field_;
+  double resolution_;                        // m per cell
+  std::optional<SquaredDistances> squared_;  // the compact field, when the clamp fits
+  std::optional<DistanceField> field_;       // otherwise
   std::unique_ptr<LikelihoodTable> table_;
   float table_range_max_ = 0.0F;
 };
