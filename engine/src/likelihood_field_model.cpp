@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "likelihood_gather.hpp"
@@ -56,6 +57,19 @@ LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid,
   }
 }
 
+LikelihoodFieldModel::LikelihoodFieldModel(std::shared_ptr<const OccupancyGrid> grid,
+                                           const LikelihoodFieldParams& params)
+    : params_(params), resolution_(grid ? grid->resolution() : 1.0) {
+  if (!grid) throw ConfigError("likelihood field: the grid is null");
+  const float clamp = checked_clamp(params);
+  if (SquaredDistances::saturation(resolution_, clamp, SquaredDistances::kMaxSaturation) > 0) {
+    grid_ = std::move(grid);
+  } else {
+    field_.emplace(surface_of(*grid),
+                   DistanceFieldOptions{.unknown_is_obstacle = false, .max_distance = clamp});
+  }
+}
+
 void LikelihoodFieldModel::prepare(const BeamSet& beams) {
   if (table_ && beams.range_max == table_range_max_) return;
   const double range_max = beams.range_max;
@@ -75,8 +89,15 @@ void LikelihoodFieldModel::prepare(const BeamSet& beams) {
     return static_cast<float>(std::log(likelihood_field_density(dist, range_max, m)));
   };
   const float outside = value(static_cast<float>(max_d + half_cell));
-  table_ = squared_ ? std::make_unique<LikelihoodTable>(*squared_, value, outside)
-                    : std::make_unique<LikelihoodTable>(*field_, value, outside);
+  table_.reset();  // the old table goes before the new one is built: one table at a time
+  if (grid_) {
+    table_ = std::make_unique<LikelihoodTable>(*grid_, ObstacleCells::kSurface,
+                                               static_cast<float>(max_d), value, outside);
+  } else if (squared_) {
+    table_ = std::make_unique<LikelihoodTable>(*squared_, value, outside);
+  } else {
+    table_ = std::make_unique<LikelihoodTable>(*field_, value, outside);
+  }
   table_range_max_ = beams.range_max;
 }
 

@@ -39,7 +39,9 @@ MixtureParams mixture_of(const LocalizerConfig& c) {
   return {c.z_hit, c.z_short, c.z_max, c.z_rand, c.sigma_hit, c.lambda_short};
 }
 
-SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
+SensorVariant make_sensor(const std::shared_ptr<const OccupancyGrid>& map,
+                          const LocalizerConfig& c) {
+  const OccupancyGrid& grid = *map;
   if (c.laser_model_type == LaserModel::kBeam) {
     std::optional<RangeTableOptions> table;
     if (c.ray_casting != RayCasting::kExact) {
@@ -52,7 +54,7 @@ SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
         BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays, c.likelihood_combination},
         table);
   }
-  return SensorVariant(std::in_place_type<LikelihoodFieldModel>, grid,
+  return SensorVariant(std::in_place_type<LikelihoodFieldModel>, map,
                        LikelihoodFieldParams{.mixture = mixture_of(c),
                                              .max_distance = c.laser_likelihood_max_dist,
                                              .combination = c.likelihood_combination,
@@ -108,7 +110,7 @@ Localizer::Impl::Impl(std::shared_ptr<const OccupancyGrid> grid, LocalizerConfig
                               .bin_theta = config.kld_bin_theta}) {
   // The distance fields / Embree scene are built in parallel on the Localizer's own threads.
   executor.run([&] {
-    sensor = std::make_unique<SensorVariant>(make_sensor(map, config));
+    sensor = std::make_unique<SensorVariant>(make_sensor(map_owner, config));
     field = std::make_unique<MapField>(map, mixture_of(config), config.laser_likelihood_max_dist);
   });
   matcher = std::make_unique<ScanMatcher>(field->signed_field,

@@ -98,4 +98,25 @@ LikelihoodTable::LikelihoodTable(const SquaredDistances& field,
   fill_rows([&](std::size_t k) { return by_squared[squared[k]]; });
 }
 
+LikelihoodTable::LikelihoodTable(const OccupancyGrid& grid, ObstacleCells obstacles, float clamp,
+                                 const std::function<float(float)>& f, float outside, int border)
+    : LikelihoodTable(grid.width(), grid.height(), grid.resolution(), grid.origin(), outside,
+                      border) {
+  const int n =
+      SquaredDistances::saturation(grid.resolution(), clamp, SquaredDistances::kMaxSaturation);
+  if (n == 0) throw ConfigError("likelihood table: the clamp does not fit 255 cells");
+  // DistanceField's value of each squared distance, then f of it, once per integer.
+  std::vector<float> by_squared(static_cast<std::size_t>(n) * static_cast<std::size_t>(n) + 1);
+  for (std::size_t s = 0; s < by_squared.size(); ++s) {
+    const auto d = static_cast<float>(std::sqrt(static_cast<double>(s)) * grid.resolution());
+    by_squared[s] = f(std::min(d, clamp));
+  }
+  const auto w = static_cast<std::size_t>(grid.width());
+  const auto b = static_cast<std::size_t>(border_);
+  for_each_squared_row(grid, obstacles, n, [&](std::size_t j, const std::uint16_t* squared) {
+    float* row = values_.get() + (j + b) * stride_ + b;
+    for (std::size_t i = 0; i < w; ++i) row[i] = by_squared[squared[i]];
+  });
+}
+
 }  // namespace mote

@@ -67,19 +67,24 @@ void SignedDistanceField::build_codes(const OccupancyGrid& grid, int saturation)
     signed_of_[cap + 1 + s] = -std::min(distance(s, clamp) - half, max_distance_);
     unsigned_of_[cap + 1 + s] = 0.0F;
   }
-  const std::size_t cells = grid.cell_count();
-  codes_ = std::make_unique_for_overwrite<std::uint16_t[]>(cells);
-  detail::squared_distances(grid, ObstacleCells::kOccupied, saturation, codes_.get());
-  const auto inside = std::make_unique_for_overwrite<std::uint16_t[]>(cells);
-  detail::squared_distances(grid, ObstacleCells::kNotOccupied, saturation, inside.get());
+  // Two transforms straight into the codes, a band of rows at a time: the first writes every
+  // cell, the second overwrites the occupied ones with their depth.
+  const auto w = static_cast<std::size_t>(width_);
+  codes_ = std::make_unique_for_overwrite<std::uint16_t[]>(grid.cell_count());
+  for_each_squared_row(
+      grid, ObstacleCells::kOccupied, saturation,
+      [&](std::size_t j, const std::uint16_t* s) { std::copy(s, s + w, codes_.get() + j * w); });
   const CellState* states = grid.cells().data();
-  par::for_each_chunk(cells, /*grain=*/1 << 16, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      if (states[k] == CellState::kOccupied) {
-        codes_[k] = static_cast<std::uint16_t>(cap + 1 + inside[k]);
-      }
-    }
-  });
+  for_each_squared_row(grid, ObstacleCells::kNotOccupied, saturation,
+                       [&](std::size_t j, const std::uint16_t* s) {
+                         std::uint16_t* row = codes_.get() + j * w;
+                         const CellState* state = states + j * w;
+                         for (std::size_t i = 0; i < w; ++i) {
+                           if (state[i] == CellState::kOccupied) {
+                             row[i] = static_cast<std::uint16_t>(cap + 1 + s[i]);
+                           }
+                         }
+                       });
 }
 
 void SignedDistanceField::build_floats(const OccupancyGrid& grid) {

@@ -1,8 +1,9 @@
-// The saturated transform: the column pass writes |j - j'| (capped at the saturation n) into the
-// output, the row pass replaces each row by its lower envelope of parabolas (Felzenszwalb and
-// Huttenlocher 2012, algorithm DT(f)). Capping is exact below the cap: a parabola whose column
-// distance reaches n contributes at least n^2 wherever it is lowest, so the minimum is either
-// unchanged or at least n^2, which both clamp to n^2.
+// The saturated transform by the envelope, for clamps past squared_rows.cpp's window: the column
+// pass writes |j - j'| (capped at the saturation n) into the output, the row pass replaces each
+// row by its lower envelope of parabolas (Felzenszwalb and Huttenlocher 2012, algorithm DT(f)).
+// Capping is exact below the cap: a parabola whose column distance reaches n contributes at least
+// n^2 wherever it is lowest, so the minimum is either unchanged or at least n^2, which both clamp
+// to n^2.
 #include "mote/maps/squared_distances.hpp"
 
 #include <algorithm>
@@ -13,30 +14,13 @@
 
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
+#include "squared_envelope.hpp"
 
 namespace mote {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// The obstacle test of one rule at cell (i, j), cells row-major from the bottom row.
-template <ObstacleCells Rule>
-bool obstacle(const CellState* cells, std::size_t w, std::size_t h, std::size_t i,
-              std::size_t j) noexcept {
-  const CellState s = cells[j * w + i];
-  if constexpr (Rule == ObstacleCells::kOccupied) return s == CellState::kOccupied;
-  if constexpr (Rule == ObstacleCells::kOccupiedOrUnknown) return s != CellState::kFree;
-  if constexpr (Rule == ObstacleCells::kNotOccupied) return s != CellState::kOccupied;
-  if constexpr (Rule == ObstacleCells::kSurface) {
-    if (s != CellState::kOccupied) return false;
-    const CellState* c = cells + j * w + i;
-    return (i > 0 && c[-1] == CellState::kFree) || (i + 1 < w && c[1] == CellState::kFree) ||
-           (j > 0 && c[-static_cast<std::ptrdiff_t>(w)] == CellState::kFree) ||
-           (j + 1 < h && c[w] == CellState::kFree);
-  }
-  return false;
-}
 
 /// Column pass, a chunk of columns at a time, rows in memory order (the inner loop is
 /// contiguous): a sweep up then a sweep down, distances capped at n.
@@ -46,13 +30,13 @@ void column_pass(const OccupancyGrid& grid, std::uint16_t n, std::uint16_t* g) {
   const auto h = static_cast<std::size_t>(grid.height());
   const CellState* cells = grid.cells().data();
   par::for_each_chunk(w, /*grain=*/256, [&](std::size_t c0, std::size_t c1) {
-    for (std::size_t i = c0; i < c1; ++i) g[i] = obstacle<Rule>(cells, w, h, i, 0) ? 0 : n;
+    for (std::size_t i = c0; i < c1; ++i) g[i] = detail::obstacle<Rule>(cells, w, h, i, 0) ? 0 : n;
     for (std::size_t j = 1; j < h; ++j) {
       const std::uint16_t* below = g + (j - 1) * w;
       std::uint16_t* row = g + j * w;
       for (std::size_t i = c0; i < c1; ++i) {
         const auto up = static_cast<std::uint16_t>(std::min<int>(below[i] + 1, n));
-        row[i] = obstacle<Rule>(cells, w, h, i, j) ? std::uint16_t{0} : up;
+        row[i] = detail::obstacle<Rule>(cells, w, h, i, j) ? std::uint16_t{0} : up;
       }
     }
     for (std::size_t j = h - 1; j-- > 0;) {
@@ -133,68 +117,12 @@ void envelope_row_pass(std::size_t w, std::size_t h, std::uint16_t n, std::uint1
   });
 }
 
-/// The largest saturation the window pass takes: its sums n^2 + (n - 1)^2 fit int16 lanes.
-constexpr std::uint16_t kMaxWindowSaturation = 127;
-
-/// Row pass in place by a window: min over |d| < n of d^2 + g(q + d)^2, capped at n^2; a column
-/// n or more away adds at least n^2. 2n - 1 passes of a vector min over the row, with no
-/// division and no dependency from one cell to the next: several times the envelope's speed
-/// for the few tens of cells a likelihood field's clamp spans. Exact integers, so the same
-/// minimum as the envelope's.
-void window_row_pass(std::size_t w, std::size_t h, std::uint16_t n, std::uint16_t* g) {
-  const auto cap = static_cast<std::int16_t>(n * n);
-  const std::size_t pad = n;
-  par::for_each_chunk(h, /*grain=*/16, [&](std::size_t r0, std::size_t r1) {
-    std::vector<std::int16_t> squared(w + 2 * pad, cap);  // g^2, cap beyond the row's ends
-    std::vector<std::int16_t> best(w);
-    for (std::size_t j = r0; j < r1; ++j) {
-      std::uint16_t* row = g + j * w;
-      std::int16_t lowest = cap;
-      std::int16_t* sq = squared.data() + pad;
-      for (std::size_t i = 0; i < w; ++i) {
-        sq[i] = static_cast<std::int16_t>(row[i] * row[i]);
-        lowest = std::min(lowest, sq[i]);
-      }
-      if (lowest == cap) {  // no obstacle within n cells of this row
-        std::fill(row, row + w, static_cast<std::uint16_t>(cap));
-        continue;
-      }
-      std::int16_t* out = best.data();
-      std::copy(sq, sq + w, out);
-      for (std::size_t d = 1; d < n; ++d) {
-        const auto dd = static_cast<std::int16_t>(d * d);
-        const std::int16_t* left = sq - d;
-        const std::int16_t* right = sq + d;
-        for (std::size_t q = 0; q < w; ++q) {
-          const auto v = static_cast<std::int16_t>(std::min(left[q], right[q]) + dd);
-          out[q] = std::min(out[q], v);
-        }
-        // Columns d + 1 or more away add at least (d + 1)^2: once every cell is there, stop.
-        if (d % 4 == 3 && *std::max_element(out, out + w) <= static_cast<int>((d + 1) * (d + 1))) {
-          break;
-        }
-      }
-      for (std::size_t q = 0; q < w; ++q) {
-        row[q] = static_cast<std::uint16_t>(std::min(out[q], cap));
-      }
-    }
-  });
-}
-
-void row_pass(std::size_t w, std::size_t h, std::uint16_t n, std::uint16_t* g) {
-  if (n <= kMaxWindowSaturation) {
-    window_row_pass(w, h, n, g);
-  } else {
-    envelope_row_pass(w, h, n, g);
-  }
-}
-
 }  // namespace
 
 namespace detail {
 
-void squared_distances(const OccupancyGrid& grid, ObstacleCells obstacles, int saturation,
-                       std::uint16_t* out) {
+void envelope_squared_distances(const OccupancyGrid& grid, ObstacleCells obstacles, int saturation,
+                                std::uint16_t* out) {
   const auto n = static_cast<std::uint16_t>(saturation);
   switch (obstacles) {
     case ObstacleCells::kOccupied:
@@ -210,7 +138,8 @@ void squared_distances(const OccupancyGrid& grid, ObstacleCells obstacles, int s
       column_pass<ObstacleCells::kNotOccupied>(grid, n, out);
       break;
   }
-  row_pass(static_cast<std::size_t>(grid.width()), static_cast<std::size_t>(grid.height()), n, out);
+  envelope_row_pass(static_cast<std::size_t>(grid.width()), static_cast<std::size_t>(grid.height()),
+                    n, out);
 }
 
 }  // namespace detail
@@ -245,7 +174,10 @@ SquaredDistances::SquaredDistances(const OccupancyGrid& grid, ObstacleCells obst
   cap_ = static_cast<std::uint32_t>(n) * static_cast<std::uint32_t>(n);
   // Every value is written by the transform: no zeroing first.
   squared_ = std::make_unique_for_overwrite<std::uint16_t[]>(grid.cell_count());
-  detail::squared_distances(grid, obstacles, n, squared_.get());
+  const auto w = static_cast<std::size_t>(width_);
+  for_each_squared_row(grid, obstacles, n, [&](std::size_t j, const std::uint16_t* row) {
+    std::copy(row, row + w, squared_.get() + j * w);
+  });
 }
 
 float SquaredDistances::distance(std::uint32_t s) const noexcept {

@@ -96,15 +96,19 @@ TEST_P(SquaredDistancesMatch, LikelihoodTableOfEitherField) {
   const LikelihoodTable compact(SquaredDistances(grid, ObstacleCells::kOccupied, c.clamp), f, -7.0F,
                                 2);
   const LikelihoodTable reference(DistanceField(grid, {.max_distance = c.clamp}), f, -7.0F, 2);
-  ASSERT_EQ(compact.width(), reference.width());
-  ASSERT_EQ(compact.height(), reference.height());
-  const std::size_t n = compact.stride() * static_cast<std::size_t>(compact.height());
-  EXPECT_EQ(std::memcmp(compact.data(), reference.data(), n * sizeof(float)), 0);
+  const LikelihoodTable direct(grid, ObstacleCells::kOccupied, c.clamp, f, -7.0F, 2);
+  for (const LikelihoodTable* t : {&compact, &direct}) {
+    ASSERT_EQ(t->width(), reference.width());
+    ASSERT_EQ(t->height(), reference.height());
+    const std::size_t n = t->stride() * static_cast<std::size_t>(t->height());
+    EXPECT_EQ(std::memcmp(t->data(), reference.data(), n * sizeof(float)), 0);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Clamps, SquaredDistancesMatch,
-                         ::testing::Values(Case{0.05, 2.0F}, Case{0.05, 0.3F}, Case{0.1, 1.0F},
-                                           Case{0.013, 0.5F}, Case{0.05, 12.0F}));
+                         ::testing::Values(Case{0.05, 2.0F}, Case{0.05, 0.05F}, Case{0.1, 1.0F},
+                                           Case{0.05, 0.3F}, Case{0.05, 6.3F}, Case{0.013, 0.5F},
+                                           Case{0.05, 12.0F}));
 
 TEST(SquaredDistances, SaturationReachesTheClampAndRefusesWhatDoesNotFit) {
   EXPECT_EQ(SquaredDistances::saturation(0.05, 2.0F, 255), 40);
@@ -155,6 +159,7 @@ void expect_signed_field_of(const OccupancyGrid& grid, float max_distance) {
 TEST(SignedDistanceField, CodesGiveTheFloatTransformsValues) {
   expect_signed_field_of(random_grid(131, 89, 0.05, 5), 2.0F);  // codes (41 cells)
   expect_signed_field_of(random_grid(131, 89, 0.05, 5), 0.4F);  // codes (9 cells)
+  expect_signed_field_of(random_grid(131, 89, 0.05, 5), 7.0F);  // codes by the envelope
   expect_signed_field_of(random_grid(131, 89, 0.01, 5), 2.0F);  // floats (201 cells)
 }
 

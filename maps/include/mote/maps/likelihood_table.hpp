@@ -72,6 +72,11 @@ class LikelihoodTable {
   /// bit for bit to the table of the DistanceField with the same clamp.
   LikelihoodTable(const SquaredDistances& field, const std::function<float(float)>& f,
                   float outside, int border = 1);
+  /// The same table straight from the grid (for_each_squared_row): f of the distance to the
+  /// nearest of `obstacles`, clamped at `clamp` m, with nothing grid-sized but the table
+  /// allocated. Throws ConfigError unless the clamp fits SquaredDistances.
+  LikelihoodTable(const OccupancyGrid& grid, ObstacleCells obstacles, float clamp,
+                  const std::function<float(float)>& f, float outside, int border = 1);
 
   [[nodiscard]] int width() const noexcept { return width_; }    ///< grid width + 2 border
   [[nodiscard]] int height() const noexcept { return height_; }  ///< grid height + 2 border

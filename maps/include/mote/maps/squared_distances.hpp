@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include "mote/core/pose.hpp"
@@ -65,12 +66,15 @@ class SquaredDistances {
   std::unique_ptr<std::uint16_t[]> squared_;
 };
 
-namespace detail {
-/// The transform into out (width * height values): columns saturated at `saturation` cells,
-/// then rows, in place; out[k] = min(exact squared distance, saturation^2). 1 <= saturation <=
-/// kMaxSaturation.
-void squared_distances(const OccupancyGrid& grid, ObstacleCells obstacles, int saturation,
-                       std::uint16_t* out);
-}  // namespace detail
+/// The transform a row at a time, for building a table of another type without a full-size
+/// intermediate: calls row(j, s) for every grid row j (in parallel, in any order) with s the
+/// row's width() squared distances, each min(exact, saturation^2). Up to 127 cells of
+/// saturation it never holds more than a band of rows per thread: the distance along each row
+/// first, then along the columns the minimum of d^2 + h(j + d)^2 over |d| < saturation, as
+/// vector passes over whole rows (the transform separates in either order; Felzenszwalb and
+/// Huttenlocher 2012, section 2). Beyond that a full-size array and the envelope along rows.
+/// 1 <= saturation <= SquaredDistances::kMaxSaturation.
+void for_each_squared_row(const OccupancyGrid& grid, ObstacleCells obstacles, int saturation,
+                          const std::function<void(std::size_t, const std::uint16_t*)>& row);
 
 }  // namespace mote
