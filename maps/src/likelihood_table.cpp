@@ -111,12 +111,13 @@ LikelihoodTable::LikelihoodTable(const OccupancyGrid& grid, ObstacleCells obstac
     const auto d = static_cast<float>(std::sqrt(static_cast<double>(s)) * grid.resolution());
     by_squared[s] = f(std::min(d, clamp));
   }
-  const auto w = static_cast<std::size_t>(grid.width());
   const auto b = static_cast<std::size_t>(border_);
-  for_each_squared_row(grid, obstacles, n, [&](std::size_t j, const std::uint16_t* squared) {
-    float* row = values_.get() + (j + b) * stride_ + b;
-    for (std::size_t i = 0; i < w; ++i) row[i] = by_squared[squared[i]];
-  });
+  for_each_squared_row(
+      grid, obstacles, n,
+      [&](std::size_t j, std::size_t i0, std::size_t count, const std::uint16_t* s) {
+        float* row = values_.get() + (j + b) * stride_ + b + i0;
+        for (std::size_t i = 0; i < count; ++i) row[i] = by_squared[s[i]];
+      });
 }
 
 }  // namespace mote

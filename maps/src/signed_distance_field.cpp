@@ -73,18 +73,21 @@ void SignedDistanceField::build_codes(const OccupancyGrid& grid, int saturation)
   codes_ = std::make_unique_for_overwrite<std::uint16_t[]>(grid.cell_count());
   for_each_squared_row(
       grid, ObstacleCells::kOccupied, saturation,
-      [&](std::size_t j, const std::uint16_t* s) { std::copy(s, s + w, codes_.get() + j * w); });
+      [&](std::size_t j, std::size_t i0, std::size_t count, const std::uint16_t* s) {
+        std::copy(s, s + count, codes_.get() + j * w + i0);
+      });
   const CellState* states = grid.cells().data();
-  for_each_squared_row(grid, ObstacleCells::kNotOccupied, saturation,
-                       [&](std::size_t j, const std::uint16_t* s) {
-                         std::uint16_t* row = codes_.get() + j * w;
-                         const CellState* state = states + j * w;
-                         for (std::size_t i = 0; i < w; ++i) {
-                           if (state[i] == CellState::kOccupied) {
-                             row[i] = static_cast<std::uint16_t>(cap + 1 + s[i]);
-                           }
-                         }
-                       });
+  for_each_squared_row(
+      grid, ObstacleCells::kNotOccupied, saturation,
+      [&](std::size_t j, std::size_t i0, std::size_t count, const std::uint16_t* s) {
+        std::uint16_t* row = codes_.get() + j * w + i0;
+        const CellState* state = states + j * w + i0;
+        for (std::size_t i = 0; i < count; ++i) {
+          if (state[i] == CellState::kOccupied) {
+            row[i] = static_cast<std::uint16_t>(cap + 1 + s[i]);
+          }
+        }
+      });
 }
 
 void SignedDistanceField::build_floats(const OccupancyGrid& grid) {

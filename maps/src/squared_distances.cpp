@@ -175,9 +175,11 @@ SquaredDistances::SquaredDistances(const OccupancyGrid& grid, ObstacleCells obst
   // Every value is written by the transform: no zeroing first.
   squared_ = std::make_unique_for_overwrite<std::uint16_t[]>(grid.cell_count());
   const auto w = static_cast<std::size_t>(width_);
-  for_each_squared_row(grid, obstacles, n, [&](std::size_t j, const std::uint16_t* row) {
-    std::copy(row, row + w, squared_.get() + j * w);
-  });
+  for_each_squared_row(
+      grid, obstacles, n,
+      [&](std::size_t j, std::size_t i0, std::size_t count, const std::uint16_t* s) {
+        std::copy(s, s + count, squared_.get() + j * w + i0);
+      });
 }
 
 float SquaredDistances::distance(std::uint32_t s) const noexcept {

@@ -66,15 +66,19 @@ class SquaredDistances {
   std::unique_ptr<std::uint16_t[]> squared_;
 };
 
-/// The transform a row at a time, for building a table of another type without a full-size
-/// intermediate: calls row(j, s) for every grid row j (in parallel, in any order) with s the
-/// row's width() squared distances, each min(exact, saturation^2). Up to 127 cells of
+/// Receives cells [i0, i0 + count) of grid row j: their squared distances s[0 .. count).
+using SquaredRowPiece =
+    std::function<void(std::size_t j, std::size_t i0, std::size_t count, const std::uint16_t* s)>;
+
+/// The transform a piece of a row at a time, for building a table of another type without a
+/// full-size intermediate: calls piece(j, i0, count, s) once for every cell (in parallel, in
+/// any order), each value min(exact, saturation^2). Up to 127 cells of
 /// saturation it never holds more than a band of rows per thread: the distance along each row
 /// first, then along the columns the minimum of d^2 + h(j + d)^2 over |d| < saturation, as
 /// vector passes over whole rows (the transform separates in either order; Felzenszwalb and
 /// Huttenlocher 2012, section 2). Beyond that a full-size array and the envelope along rows.
 /// 1 <= saturation <= SquaredDistances::kMaxSaturation.
 void for_each_squared_row(const OccupancyGrid& grid, ObstacleCells obstacles, int saturation,
-                          const std::function<void(std::size_t, const std::uint16_t*)>& row);
+                          const SquaredRowPiece& piece);
 
 }  // namespace mote
