@@ -102,6 +102,7 @@ void column_window(const Band& band, std::size_t j, std::size_t h, std::size_t s
   const std::size_t len = std::min(band.width, i0 + kSegment) - i0;
   std::int16_t* b = best + i0;
   std::copy(band.row(j) + i0, band.row(j) + i0 + len, b);
+  if (largest(b, len) <= 1) return;  // on or next to obstacles along the row: already exact
   for (std::size_t d = 1; d <= halo && (j >= d || j + d < h); ++d) {
     const bool below = j >= d && band.low(j - d, s) != cap;
     const bool above = j + d < h && band.low(j + d, s) != cap;
