@@ -29,6 +29,21 @@ void check_shape(int width, int height, double resolution, std::size_t cell_coun
   }
 }
 constexpr std::size_t kBlock = 64;  // cells per entry of the free-cell index
+constexpr std::size_t kGuide = 10;  // log2 of the free cells between guide entries
+
+/// For every free cell k that is a multiple of 2^kGuide, the block holding it; then the number
+/// of blocks. free_cell() searches only between two neighbouring entries.
+std::vector<std::uint32_t> guide_free_cells(const std::vector<std::uint32_t>& before) {
+  std::vector<std::uint32_t> guide;
+  guide.reserve((before.back() >> kGuide) + 2);
+  for (std::size_t b = 0; b + 1 < before.size(); ++b) {
+    while ((static_cast<std::size_t>(guide.size()) << kGuide) < before[b + 1]) {
+      guide.push_back(static_cast<std::uint32_t>(b));
+    }
+  }
+  guide.push_back(static_cast<std::uint32_t>(before.size() - 1));
+  return guide;
+}
 
 /// Free cells before each block of kBlock cells, and the total as the last entry: counted per
 /// block in parallel, then a serial prefix sum (integers: the same for any thread count).
@@ -62,6 +77,7 @@ OccupancyGrid::OccupancyGrid(int width, int height, double resolution, Pose2 ori
   check_shape(width, height, resolution, cells_.size());
   free_before_ = count_free_cells(cells_);
   free_count_ = free_before_.back();
+  free_guide_ = guide_free_cells(free_before_);
 }
 
 Point2 OccupancyGrid::to_grid_frame(Point2 world) const noexcept {
@@ -90,7 +106,10 @@ Point2 OccupancyGrid::cell_center(CellIndex c) const noexcept {
 
 std::uint32_t OccupancyGrid::free_cell(std::size_t k) const noexcept {
   // The last block with fewer than k + 1 free cells before it holds free cell k.
-  const auto after = std::upper_bound(free_before_.begin(), free_before_.end(), k);
+  const std::size_t g = k >> kGuide;
+  const auto first = free_before_.begin() + free_guide_[g];
+  const auto last = free_before_.begin() + free_guide_[g + 1] + 1;
+  const auto after = std::upper_bound(first, last, k);
   const auto block = static_cast<std::size_t>(after - free_before_.begin()) - 1;
   std::size_t left = k - free_before_[block];
   std::size_t cell = block * kBlock;

@@ -27,7 +27,8 @@ struct CellIndex {
 
 /// An occupancy grid with world-to-cell transforms and an index of its free cells: the count of
 /// free cells before every block of 64 cells (1/16 byte per cell), from which free_point() finds
-/// the k-th free cell by a binary search and a scan of one block.
+/// the k-th free cell by a binary search (between the blocks of free cells 1024 apart) and a
+/// scan of one block.
 class OccupancyGrid final : public FreeSpace {
  public:
   /// cells holds width * height states, row-major from the bottom row (j = 0) up.
@@ -88,6 +89,7 @@ class OccupancyGrid final : public FreeSpace {
   double sin_yaw_;
   std::vector<CellState> cells_;
   std::vector<std::uint32_t> free_before_;  // free cells before each 64-cell block
+  std::vector<std::uint32_t> free_guide_;   // the block of every 1024th free cell
   std::size_t free_count_ = 0;
 };
 
