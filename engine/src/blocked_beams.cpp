@@ -66,7 +66,7 @@ bool BlockedBeamFilter::ray_free(const BeamSet& beams, std::size_t b, const Sens
 bool BlockedBeamFilter::majority_blocked(const BeamSet& beams, std::size_t b, const MapField& map,
                                          double band) const {
   if (!(beams.range[b] < beams.range_max)) return false;  // a no-return has no endpoint
-  const FieldWalker walk(map.grid, map.field);
+  const FieldWalker walk(map.grid, map.signed_field);
   const double needed = kAgreement * total_;
   // The samples whose endpoint lies on a wall first (a lookup each), then rays traced for the
   // others until the answer is settled: the same answer as in any order, as each sample's
@@ -126,7 +126,7 @@ std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleVie
   const double band = hit_band(map.mixture, beams.range_max);
   if (n == 0 || beams.empty() || !std::isfinite(band)) return 0;
   if (!focused) return 0;
-  const FieldWalker walk(map.grid, map.field);
+  const FieldWalker walk(map.grid, map.signed_field);
   samples_.clear();
   total_ = 0.0;
   const std::size_t stride = std::max<std::size_t>(1, (n + kSample - 1) / kSample);

@@ -8,17 +8,17 @@
 #include <cstddef>
 
 #include "mote/core/pose.hpp"
-#include "mote/maps/distance_field.hpp"
 #include "mote/maps/occupancy_grid.hpp"
+#include "mote/maps/signed_distance_field.hpp"
 
 namespace mote {
 
 // The distance field in cell units, walked in the grid frame (no per-step frame change).
 class FieldWalker {
  public:
-  FieldWalker(const OccupancyGrid& grid, const DistanceField& field)
+  FieldWalker(const OccupancyGrid& grid, const SignedDistanceField& field)
       : grid_(grid),
-        distances_(field.distances().data()),
+        field_(field),
         inv_cell_(1.0 / grid_.resolution()),
         width_(grid_.width()),
         height_(grid_.height()) {}
@@ -41,7 +41,7 @@ class FieldWalker {
     if (!(fi >= 0.0 && fj >= 0.0 && fi < width_ && fj < height_)) return -1.0;
     const auto index = static_cast<std::size_t>(fj) * static_cast<std::size_t>(width_) +
                        static_cast<std::size_t>(fi);
-    return distances_[index] * inv_cell_;
+    return field_.obstacle_distance(index) * inv_cell_;
   }
   // True when the map holds no obstacle on the ray p + t u for t in [from, to] (cells).
   // Sphere tracing: from any point the nearest occupied cell centre is d away, so the ray is
@@ -81,7 +81,7 @@ class FieldWalker {
 
  private:
   const OccupancyGrid& grid_;
-  const float* distances_;
+  const SignedDistanceField& field_;  // its obstacle_distance()
   double inv_cell_;
   double width_;
   double height_;

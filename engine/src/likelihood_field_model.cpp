@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "likelihood_gather.hpp"
@@ -15,18 +16,18 @@ namespace {
 // streams over them (the loop over particles is the vectorized one).
 constexpr std::size_t kBlock = detail::kLikelihoodBlock;
 
-DistanceFieldOptions field_options(const LikelihoodFieldParams& p) {
+float checked_clamp(const LikelihoodFieldParams& p) {
   if (!(p.max_distance > 0.0)) {
     throw ConfigError("likelihood field: max_distance must be positive");
   }
-  return {.unknown_is_obstacle = false, .max_distance = static_cast<float>(p.max_distance)};
+  return static_cast<float>(p.max_distance);
 }
 
 // The grid with only the surface of each obstacle kept occupied: occupied cells with a free
 // 4-neighbour. A beam ends on a surface; measured to every occupied cell, an endpoint that
 // overshoots into a thick wall would cost nothing (its distance stays 0), which biases the
 // field's maximum towards poses that see into walls. Measured to surfaces, overshooting costs
-// as much as falling short.
+// as much as falling short. (ObstacleCells::kSurface is the same rule without the copy.)
 OccupancyGrid surface_of(const OccupancyGrid& grid) {
   std::vector<CellState> cells(grid.cells().size(), CellState::kFree);
   for (int j = 0; j < grid.height(); ++j) {
@@ -46,7 +47,28 @@ OccupancyGrid surface_of(const OccupancyGrid& grid) {
 
 LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid,
                                            const LikelihoodFieldParams& params)
-    : params_(params), field_(surface_of(grid), field_options(params)) {}
+    : params_(params), resolution_(grid.resolution()) {
+  const float clamp = checked_clamp(params);
+  if (SquaredDistances::saturation(resolution_, clamp, SquaredDistances::kMaxSaturation) > 0) {
+    squared_.emplace(grid, ObstacleCells::kSurface, clamp);
+  } else {
+    field_.emplace(surface_of(grid),
+                   DistanceFieldOptions{.unknown_is_obstacle = false, .max_distance = clamp});
+  }
+}
+
+LikelihoodFieldModel::LikelihoodFieldModel(std::shared_ptr<const OccupancyGrid> grid,
+                                           const LikelihoodFieldParams& params)
+    : params_(params), resolution_(grid ? grid->resolution() : 1.0) {
+  if (!grid) throw ConfigError("likelihood field: the grid is null");
+  const float clamp = checked_clamp(params);
+  if (SquaredDistances::saturation(resolution_, clamp, SquaredDistances::kMaxSaturation) > 0) {
+    grid_ = std::move(grid);
+  } else {
+    field_.emplace(surface_of(*grid),
+                   DistanceFieldOptions{.unknown_is_obstacle = false, .max_distance = clamp});
+  }
+}
 
 void LikelihoodFieldModel::prepare(const BeamSet& beams) {
   if (table_ && beams.range_max == table_range_max_) return;
@@ -56,7 +78,7 @@ void LikelihoodFieldModel::prepare(const BeamSet& beams) {
   // The distance field measures to occupied cell centres, but a beam ends on a cell's face,
   // half a cell nearer: without this correction the field's maximum sits up to half a cell
   // (2.5 cm on a 5 cm map) off the true pose, in the direction of the walls in view.
-  const double half_cell = 0.5 * field_.resolution();
+  const double half_cell = 0.5 * resolution_;
   auto value = [&](float d) -> float {
     // amcl clamps at max_occ_dist.
     const double dist = std::min(std::max(0.0, static_cast<double>(d) - half_cell), max_d);
@@ -67,7 +89,15 @@ void LikelihoodFieldModel::prepare(const BeamSet& beams) {
     return static_cast<float>(std::log(likelihood_field_density(dist, range_max, m)));
   };
   const float outside = value(static_cast<float>(max_d + half_cell));
-  table_ = std::make_unique<LikelihoodTable>(field_, value, outside);
+  table_.reset();  // the old table goes before the new one is built: one table at a time
+  if (grid_) {
+    table_ = std::make_unique<LikelihoodTable>(*grid_, ObstacleCells::kSurface,
+                                               static_cast<float>(max_d), value, outside);
+  } else if (squared_) {
+    table_ = std::make_unique<LikelihoodTable>(*squared_, value, outside);
+  } else {
+    table_ = std::make_unique<LikelihoodTable>(*field_, value, outside);
+  }
   table_range_max_ = beams.range_max;
 }
 

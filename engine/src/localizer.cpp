@@ -35,7 +35,10 @@ void timed(double& ms, F&& f) {
 }  // namespace
 
 Localizer::Localizer(const OccupancyGrid& map, LocalizerConfig config)
-    : impl_(std::make_unique<Impl>(map, std::move(config))) {}
+    : impl_(std::make_unique<Impl>(std::make_shared<const OccupancyGrid>(map), std::move(config))) {
+}
+Localizer::Localizer(std::shared_ptr<const OccupancyGrid> map, LocalizerConfig config)
+    : impl_(std::make_unique<Impl>(std::move(map), std::move(config))) {}
 Localizer::~Localizer() = default;
 Localizer::Localizer(Localizer&&) noexcept = default;
 Localizer& Localizer::operator=(Localizer&&) noexcept = default;

@@ -36,7 +36,7 @@ using MotionVariant = std::variant<OdometryModel, OmniModel, AckermannModel>;
 [[nodiscard]] MotionVariant make_motion(const LocalizerConfig& c);
 
 struct Localizer::Impl {
-  Impl(const OccupancyGrid& grid, LocalizerConfig cfg);
+  Impl(std::shared_ptr<const OccupancyGrid> grid, LocalizerConfig cfg);
 
   // Steps of update(), in order (localizer_steps.cpp).
   bool reject(UpdateOutcome outcome, std::string reason);
@@ -81,7 +81,8 @@ struct Localizer::Impl {
   void keep_kld_prefix();  // cut a fresh i.i.d. set to the KLD count of its prefix
 
   LocalizerConfig config;
-  OccupancyGrid map;
+  std::shared_ptr<const OccupancyGrid> map_owner;  // shared with the caller, or a copy
+  const OccupancyGrid& map;
   Executor executor;
   MotionVariant motion;
   std::unique_ptr<SensorVariant> sensor;  // built inside the executor's arena
@@ -90,7 +91,7 @@ struct Localizer::Impl {
   KldBins bins;
   AugmentedMcl recovery;
   std::unique_ptr<MapField> field;       // built inside the executor's arena
-  std::unique_ptr<ScanMatcher> matcher;  // on field->field
+  std::unique_ptr<ScanMatcher> matcher;  // on field->signed_field
   LocalizationMonitor monitor;
   BlockedBeamFilter blocked_filter;
   OdometryNoiseEstimator odometry_noise;

@@ -2,12 +2,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 
 #include <Eigen/Cholesky>
 
 #include "localizer_impl.hpp"
+#include "mote/core/error.hpp"
 #include "mote/engine/estimate.hpp"
 #include "mote/engine/resample.hpp"
 #include "mote/engine/tempering.hpp"
@@ -37,7 +39,9 @@ MixtureParams mixture_of(const LocalizerConfig& c) {
   return {c.z_hit, c.z_short, c.z_max, c.z_rand, c.sigma_hit, c.lambda_short};
 }
 
-SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
+SensorVariant make_sensor(const std::shared_ptr<const OccupancyGrid>& map,
+                          const LocalizerConfig& c) {
+  const OccupancyGrid& grid = *map;
   if (c.laser_model_type == LaserModel::kBeam) {
     std::optional<RangeTableOptions> table;
     if (c.ray_casting != RayCasting::kExact) {
@@ -50,7 +54,7 @@ SensorVariant make_sensor(const OccupancyGrid& grid, const LocalizerConfig& c) {
         BeamModelParams{mixture_of(c), 1.0, c.unknown_cells_block_rays, c.likelihood_combination},
         table);
   }
-  return SensorVariant(std::in_place_type<LikelihoodFieldModel>, grid,
+  return SensorVariant(std::in_place_type<LikelihoodFieldModel>, map,
                        LikelihoodFieldParams{.mixture = mixture_of(c),
                                              .max_distance = c.laser_likelihood_max_dist,
                                              .combination = c.likelihood_combination,
@@ -74,11 +78,18 @@ LocalizerConfig validated(LocalizerConfig c) {
   return c;
 }
 
+// A null map is refused before anything reads it.
+const OccupancyGrid& checked_map(const std::shared_ptr<const OccupancyGrid>& map) {
+  if (!map) throw ConfigError("Localizer: the map is null");
+  return *map;
+}
+
 }  // namespace
 
-Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
+Localizer::Impl::Impl(std::shared_ptr<const OccupancyGrid> grid, LocalizerConfig cfg)
     : config(validated(std::move(cfg))),
-      map(grid),
+      map_owner(std::move(grid)),
+      map(checked_map(map_owner)),
       executor(config.threads),
       motion(make_motion(config)),
 
@@ -99,7 +110,7 @@ Localizer::Impl::Impl(const OccupancyGrid& grid, LocalizerConfig cfg)
                               .bin_theta = config.kld_bin_theta}) {
   // The distance fields / Embree scene are built in parallel on the Localizer's own threads.
   executor.run([&] {
-    sensor = std::make_unique<SensorVariant>(make_sensor(map, config));
+    sensor = std::make_unique<SensorVariant>(make_sensor(map_owner, config));
     field = std::make_unique<MapField>(map, mixture_of(config), config.laser_likelihood_max_dist);
   });
   matcher = std::make_unique<ScanMatcher>(field->signed_field,
@@ -365,7 +376,7 @@ void Localizer::Impl::judge_localization() {
     stats.hit_share = stats.see_through = std::numeric_limits<double>::quiet_NaN();
   } else {
     stats.hit_share = match.hit_share;
-    const FieldWalker walk(map, field->field);
+    const FieldWalker walk(map, field->signed_field);
     stats.see_through = see_through_share(beams, match.pose, walk, 2.0 * config.sigma_hit);
   }
   stats.state = monitor.update(stats.see_through, stats.hit_share, one_place);

@@ -28,31 +28,39 @@ void check_shape(int width, int height, double resolution, std::size_t cell_coun
     throw ConfigError("occupancy grid: more than 2^32 cells is not supported");
   }
 }
-/// Linear indices of the free cells, ascending: count per block, offsets by a prefix sum over
-/// the blocks, then fill; blocks are fixed, so the result never depends on the thread count.
-std::vector<std::uint32_t> index_free_cells(const std::vector<CellState>& cells) {
-  constexpr std::size_t kBlock = std::size_t{1} << 16;
+constexpr std::size_t kBlock = 64;  // cells per entry of the free-cell index
+constexpr std::size_t kGuide = 10;  // log2 of the free cells between guide entries
+
+/// For every free cell k that is a multiple of 2^kGuide, the block holding it; then the number
+/// of blocks. free_cell() searches only between two neighbouring entries.
+std::vector<std::uint32_t> guide_free_cells(const std::vector<std::uint32_t>& before) {
+  std::vector<std::uint32_t> guide;
+  guide.reserve((before.back() >> kGuide) + 2);
+  for (std::size_t b = 0; b + 1 < before.size(); ++b) {
+    while ((static_cast<std::size_t>(guide.size()) << kGuide) < before[b + 1]) {
+      guide.push_back(static_cast<std::uint32_t>(b));
+    }
+  }
+  guide.push_back(static_cast<std::uint32_t>(before.size() - 1));
+  return guide;
+}
+
+/// Free cells before each block of kBlock cells, and the total as the last entry: counted per
+/// block in parallel, then a serial prefix sum (integers: the same for any thread count).
+std::vector<std::uint32_t> count_free_cells(const std::vector<CellState>& cells) {
   const std::size_t blocks = (cells.size() + kBlock - 1) / kBlock;
-  std::vector<std::size_t> offset(blocks + 1, 0);
-  par::for_each_chunk(cells.size(), /*grain=*/kBlock, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; b += kBlock) {
-      offset[b / kBlock + 1] = static_cast<std::size_t>(
-          std::count(cells.begin() + static_cast<std::ptrdiff_t>(b),
-                     cells.begin() + static_cast<std::ptrdiff_t>(std::min(end, b + kBlock)),
-                     CellState::kFree));
+  std::vector<std::uint32_t> before(blocks + 1);
+  before[0] = 0;
+  par::for_each_chunk(blocks, /*grain=*/1024, [&](std::size_t b0, std::size_t b1) {
+    for (std::size_t b = b0; b < b1; ++b) {
+      const std::size_t end = std::min(cells.size(), (b + 1) * kBlock);
+      std::uint32_t n = 0;
+      for (std::size_t k = b * kBlock; k < end; ++k) n += cells[k] == CellState::kFree ? 1U : 0U;
+      before[b + 1] = n;
     }
   });
-  for (std::size_t b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
-  std::vector<std::uint32_t> free(offset[blocks]);
-  par::for_each_chunk(cells.size(), /*grain=*/kBlock, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; b += kBlock) {
-      std::uint32_t* out = free.data() + offset[b / kBlock];
-      for (std::size_t k = b; k < std::min(end, b + kBlock); ++k) {
-        if (cells[k] == CellState::kFree) *out++ = static_cast<std::uint32_t>(k);
-      }
-    }
-  });
-  return free;
+  for (std::size_t b = 0; b < blocks; ++b) before[b + 1] += before[b];
+  return before;
 }
 
 }  // namespace
@@ -67,7 +75,9 @@ OccupancyGrid::OccupancyGrid(int width, int height, double resolution, Pose2 ori
       sin_yaw_(std::sin(origin.theta)),
       cells_(std::move(cells)) {
   check_shape(width, height, resolution, cells_.size());
-  free_ = index_free_cells(cells_);
+  free_before_ = count_free_cells(cells_);
+  free_count_ = free_before_.back();
+  free_guide_ = guide_free_cells(free_before_);
 }
 
 Point2 OccupancyGrid::to_grid_frame(Point2 world) const noexcept {
@@ -94,8 +104,36 @@ Point2 OccupancyGrid::cell_center(CellIndex c) const noexcept {
   return to_map_frame({(c.i + 0.5) * resolution_, (c.j + 0.5) * resolution_});
 }
 
+std::uint32_t OccupancyGrid::free_cell(std::size_t k) const noexcept {
+  // The last block with fewer than k + 1 free cells before it holds free cell k.
+  const std::size_t g = k >> kGuide;
+  const auto first = free_before_.begin() + free_guide_[g];
+  const auto last = free_before_.begin() + free_guide_[g + 1] + 1;
+  const auto after = std::upper_bound(first, last, k);
+  const auto block = static_cast<std::size_t>(after - free_before_.begin()) - 1;
+  std::size_t left = k - free_before_[block];
+  std::size_t cell = block * kBlock;
+  for (;; ++cell) {
+    if (cells_[cell] != CellState::kFree) continue;
+    if (left == 0) break;
+    --left;
+  }
+  return static_cast<std::uint32_t>(cell);
+}
+
+std::vector<std::uint32_t> OccupancyGrid::free_cells() const {
+  std::vector<std::uint32_t> free(free_count_);
+  par::for_each_chunk(free_before_.size() - 1, /*grain=*/1024, [&](std::size_t b0, std::size_t b1) {
+    std::uint32_t* out = free.data() + free_before_[b0];
+    for (std::size_t k = b0 * kBlock; k < std::min(cells_.size(), b1 * kBlock); ++k) {
+      if (cells_[k] == CellState::kFree) *out++ = static_cast<std::uint32_t>(k);
+    }
+  });
+  return free;
+}
+
 Point2 OccupancyGrid::free_point(std::size_t k, double u, double v) const noexcept {
-  return point_in_cell(free_[k], u, v);
+  return point_in_cell(free_cell(k), u, v);
 }
 
 Point2 OccupancyGrid::point_in_cell(std::uint32_t cell, double u, double v) const noexcept {

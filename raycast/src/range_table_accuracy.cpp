@@ -14,7 +14,7 @@ RangeTableAccuracy measure_range_table(const RangeTable& table, const RayCaster&
                                        const OccupancyGrid& grid, std::size_t rays, float max_range,
                                        std::uint64_t seed) {
   RangeTableAccuracy acc;
-  if (grid.free_cells().empty() || rays == 0) return acc;
+  if (grid.free_cell_count() == 0 || rays == 0) return acc;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const auto& free = grid.free_cells();

@@ -67,7 +67,7 @@ void write_replay_outputs(const std::filesystem::path& dir, const ReplayResult& 
   std::vector<LocalizationState> states;
   states.reserve(result.updates.size());
   for (const UpdateRecord& u : result.updates) states.push_back(u.state);
-  write_map_png(dir / "map.png", result.map, map_overlay(result, states));
+  write_map_png(dir / "map.png", result.map(), map_overlay(result, states));
 }
 
 }  // namespace mote::replay

@@ -146,13 +146,13 @@ ReplayResult run_replay(const ReplayOptions& options) {
   if (!options.reference.empty()) result.reference = logs::read_tum(options.reference);
   const std::vector<logs::StampedPose> sorted_reference = logs::sort_by_stamp(result.reference);
   auto source = logs::open_scan_log(options.log, options.reader);
-  Localizer filter(result.map, options.config);
+  Localizer filter(result.grid, options.config);  // shares the map: no copy
   result.threads = filter.threads();
   result.global_set = filter.global_set();
   const RangeTable* table = filter.range_table();
   if (table) {
     result.range_table = summarize_range_table(
-        result.map, *table, {.unknown_blocks = options.config.unknown_cells_block_rays});
+        result.map(), *table, {.unknown_blocks = options.config.unknown_cells_block_rays});
   }
   const auto start = Clock::now();
   run_frames(result, filter, *source, options, sorted_reference);

@@ -147,7 +147,7 @@ class BoxGrower {
 // margin. A log covers a small part of a large map, whose every cell the page would otherwise
 // carry (a 4000 x 4000 grid is 21 MB of base64).
 CellBox visited_cells(const ReplayResult& result, const ViewerRecording& recording) {
-  const FixedPointGrid grid(result.map);
+  const FixedPointGrid grid(result.map());
   BoxGrower box;
   for (const auto* poses : {&result.trajectory, &result.reference}) {
     for (const logs::StampedPose& p : *poses) {
@@ -159,8 +159,8 @@ CellBox visited_cells(const ReplayResult& result, const ViewerRecording& recordi
   box.add_fixed(recording.endpoints, 2, grid.per_cell());
   box.add_fixed(recording.heavy_clusters, 3, grid.per_cell());
   const int margin =
-      std::max(10, static_cast<int>(std::ceil(kViewerMarginM / result.map.resolution())));
-  return box.cells(result.map, margin);
+      std::max(10, static_cast<int>(std::ceil(kViewerMarginM / result.map().resolution())));
+  return box.cells(result.map(), margin);
 }
 
 // The cells of `box`, row 0 its bottom row (grid frame), as CellState values; u0 and v0 place
@@ -269,17 +269,17 @@ void check_recording(const ReplayResult& result, const ViewerRecording& recordin
 void write_viewer_page(std::ostream& out, const ReplayResult& result,
                        const ViewerRecording& recording) {
   check_recording(result, recording);
-  const FixedPointGrid grid(result.map);
+  const FixedPointGrid grid(result.map());
   out << kViewerPageHead << "<script id=\"mote-data\" type=\"application/json\">{";
   out.precision(6);
-  write_map(out, result.map, visited_cells(result, recording));
+  write_map(out, result.map(), visited_cells(result, recording));
   out << ",\"per_cell\":" << grid.per_cell() << ",\"threads\":" << result.threads
       << ",\"lost_misfit\":" << result.config.lost_misfit << ",\"model\":";
   write_string(out, model_name(result.config.laser_model_type));
   out << ",\"t0\":";
   write_string(out, std::to_string(result.first_stamp));
-  write_poses(out, "estimate", result.trajectory, result.map, result.first_stamp);
-  write_poses(out, "reference", logs::sort_by_stamp(result.reference), result.map,
+  write_poses(out, "estimate", result.trajectory, result.map(), result.first_stamp);
+  write_poses(out, "reference", logs::sort_by_stamp(result.reference), result.map(),
               result.first_stamp);
   write_statistics(out, result);
   write_array(out, "clusters", recording.clusters.size(),

@@ -34,7 +34,7 @@ TEST(FreeSpace, IndexListsExactlyTheFreeCellsInOrder) {
 }
 
 TEST(FreeSpace, IndexOverManyBlocksOnTwoThreads) {
-  // 701 x 303 cells span several 2^16-cell blocks of the parallel index, the last one partial.
+  // 701 x 303 cells span many blocks of the index and of the parallel listing, the last partial.
   tbb::task_arena two(2);
   two.execute([] {
     const OccupancyGrid grid = random_grid(8, Pose2{}, 701, 303);
@@ -42,17 +42,30 @@ TEST(FreeSpace, IndexOverManyBlocksOnTwoThreads) {
   });
 }
 
+TEST(FreeSpace, TheKthFreeCellOfTheBlockIndexIsTheListsKth) {
+  // 701 x 303 cells: many 64-cell blocks, some without a free cell, the last one partial.
+  const OccupancyGrid grid = random_grid(4, Pose2{}, 701, 303);
+  const std::vector<std::uint32_t> expected = serial_free_index(grid);
+  ASSERT_EQ(grid.free_cell_count(), expected.size());
+  std::size_t mismatches = 0;
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    mismatches += grid.free_cell(k) == expected[k] ? 0U : 1U;
+  }
+  EXPECT_EQ(mismatches, 0U);
+}
+
 TEST(FreeSpace, DrawnPointsFallInTheirFreeCell) {
   for (const double yaw : {0.0, 0.9, 3.14, -1.6}) {
     const OccupancyGrid grid = random_grid(9, Pose2{2.0, -1.0, yaw});
     const FreeSpace& space = grid;
+    const std::vector<std::uint32_t> free = grid.free_cells();
     std::mt19937 rng(2);
     std::uniform_real_distribution<double> u(0.01, 0.99);
     for (std::size_t k = 0; k < space.free_cell_count(); ++k) {
       const Point2 p = space.free_point(k, u(rng), u(rng));
       const CellIndex c = grid.world_to_cell(p);
       ASSERT_TRUE(grid.contains(c));
-      EXPECT_EQ(grid.linear_index(c), grid.free_cells()[k]);
+      EXPECT_EQ(grid.linear_index(c), free[k]);
       EXPECT_EQ(grid.at(c), CellState::kFree);
     }
   }

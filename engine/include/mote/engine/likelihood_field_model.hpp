@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 
 #include "mote/engine/beams.hpp"
 #include "mote/engine/localizer_config.hpp"
@@ -14,6 +15,7 @@
 #include "mote/maps/distance_field.hpp"
 #include "mote/maps/likelihood_table.hpp"
 #include "mote/maps/occupancy_grid.hpp"
+#include "mote/maps/squared_distances.hpp"
 
 namespace mote {
 
@@ -32,8 +34,15 @@ struct LikelihoodFieldParams {
 /// log(1 + sum pz^3). Endpoints off the map read the value at max_distance, as in amcl.
 class LikelihoodFieldModel {
  public:
-  /// Computes the distance field of the grid (clamped at max_distance).
+  /// Computes the distance field of the grid's obstacle surfaces (clamped at max_distance): 2
+  /// bytes per cell up to 255 cells of max_distance, 4 beyond.
   LikelihoodFieldModel(const OccupancyGrid& grid, const LikelihoodFieldParams& params);
+  /// The same, sharing the grid instead: nothing is built here, and prepare() builds the table
+  /// straight from the grid (4 bytes per cell, no distance field kept; a new range_max builds
+  /// it again). Clamps past 255 cells keep the float field as above. Throws ConfigError on a
+  /// null grid.
+  LikelihoodFieldModel(std::shared_ptr<const OccupancyGrid> grid,
+                       const LikelihoodFieldParams& params);
 
   /// Builds the table for the scan's range_max (z_rand / z_max depends on it); a no-op when it
   /// is unchanged. Call before weigh() from one thread.
@@ -52,7 +61,10 @@ class LikelihoodFieldModel {
                    const ParticleView& particles, std::size_t begin, std::size_t end) const;
 
   LikelihoodFieldParams params_;
-  DistanceField field_;
+  double resolution_;                          // m per cell
+  std::optional<SquaredDistances> squared_;    // the compact field, when the clamp fits
+  std::optional<DistanceField> field_;         // otherwise
+  std::shared_ptr<const OccupancyGrid> grid_;  // the shared grid, when neither is kept
   std::unique_ptr<LikelihoodTable> table_;
   float table_range_max_ = 0.0F;
 };

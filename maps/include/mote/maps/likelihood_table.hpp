@@ -7,9 +7,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <vector>
+#include <memory>
 
 #include "mote/maps/distance_field.hpp"
+#include "mote/maps/squared_distances.hpp"
 
 namespace mote {
 
@@ -66,6 +67,16 @@ class LikelihoodTable {
   /// otherwise.
   LikelihoodTable(const DistanceField& field, const std::function<float(float)>& f, float outside,
                   int border = 1);
+  /// The same table from the compact transform: f runs once per squared distance up to
+  /// field.cap() (a few hundred calls, not one per cell), each cell copies its value; equal
+  /// bit for bit to the table of the DistanceField with the same clamp.
+  LikelihoodTable(const SquaredDistances& field, const std::function<float(float)>& f,
+                  float outside, int border = 1);
+  /// The same table straight from the grid (for_each_squared_row): f of the distance to the
+  /// nearest of `obstacles`, clamped at `clamp` m, with nothing grid-sized but the table
+  /// allocated. Throws ConfigError unless the clamp fits SquaredDistances.
+  LikelihoodTable(const OccupancyGrid& grid, ObstacleCells obstacles, float clamp,
+                  const std::function<float(float)>& f, float outside, int border = 1);
 
   [[nodiscard]] int width() const noexcept { return width_; }    ///< grid width + 2 border
   [[nodiscard]] int height() const noexcept { return height_; }  ///< grid height + 2 border
@@ -73,7 +84,7 @@ class LikelihoodTable {
   [[nodiscard]] std::size_t stride() const noexcept { return stride_; }  ///< floats per row
   [[nodiscard]] float outside() const noexcept { return outside_; }
   /// Row-major from the bottom table row; width() valid floats per stride().
-  [[nodiscard]] const float* data() const noexcept { return values_.data(); }
+  [[nodiscard]] const float* data() const noexcept { return values_.get(); }
   [[nodiscard]] const TableTransform& transform() const noexcept { return transform_; }
 
   /// The value of grid cell c (inside the grid).
@@ -84,20 +95,27 @@ class LikelihoodTable {
 
   /// A copyable view for hot loops (see LikelihoodView::lookup).
   [[nodiscard]] LikelihoodView view() const noexcept {
-    return {values_.data(), static_cast<std::int32_t>(stride_), transform_};
+    return {values_.get(), static_cast<std::int32_t>(stride_), transform_};
   }
   /// The value at a map frame point, m (see LikelihoodView::lookup). In a loop over many
   /// points, copy view() into a local first so the compiler can keep it in registers.
   [[nodiscard]] float lookup(float x, float y) const noexcept { return view().lookup(x, y); }
 
  private:
+  /// Geometry of a grid of width x height cells at resolution and origin, border ring filled.
+  LikelihoodTable(int width, int height, double resolution, const Pose2& origin, float outside,
+                  int border);
+  /// Fills grid row j (without the ring) by value(i), in parallel over rows.
+  template <typename Value>
+  void fill_rows(const Value& value);
+
   int width_;
   int height_;
   int border_;
   std::size_t stride_;
   float outside_;
   TableTransform transform_;
-  std::vector<float> values_;
+  std::unique_ptr<float[]> values_;  // 4 bytes per cell; the ring written once, no zeroing
 };
 
 }  // namespace mote

@@ -25,7 +25,10 @@ struct CellIndex {
   friend bool operator==(const CellIndex&, const CellIndex&) = default;
 };
 
-/// An occupancy grid with world-to-cell transforms and an index of its free cells.
+/// An occupancy grid with world-to-cell transforms and an index of its free cells: the count of
+/// free cells before every block of 64 cells (1/16 byte per cell), from which free_point() finds
+/// the k-th free cell by a binary search (between the blocks of free cells 1024 apart) and a
+/// scan of one block.
 class OccupancyGrid final : public FreeSpace {
  public:
   /// cells holds width * height states, row-major from the bottom row (j = 0) up.
@@ -69,11 +72,13 @@ class OccupancyGrid final : public FreeSpace {
   [[nodiscard]] Point2 point_in_cell(std::uint32_t cell, double u, double v) const noexcept;
 
   // FreeSpace
-  [[nodiscard]] std::size_t free_cell_count() const noexcept override { return free_.size(); }
+  [[nodiscard]] std::size_t free_cell_count() const noexcept override { return free_count_; }
   [[nodiscard]] Point2 free_point(std::size_t k, double u, double v) const noexcept override;
   [[nodiscard]] Bounds2 bounds() const noexcept override;
-  /// Linear indices of the free cells, ascending.
-  [[nodiscard]] const std::vector<std::uint32_t>& free_cells() const noexcept { return free_; }
+  /// Linear indices of the free cells, ascending, listed on each call (4 bytes per free cell).
+  [[nodiscard]] std::vector<std::uint32_t> free_cells() const;
+  /// Linear index of the k-th free cell (k < free_cell_count()).
+  [[nodiscard]] std::uint32_t free_cell(std::size_t k) const noexcept;
 
  private:
   int width_;
@@ -83,7 +88,9 @@ class OccupancyGrid final : public FreeSpace {
   double cos_yaw_;
   double sin_yaw_;
   std::vector<CellState> cells_;
-  std::vector<std::uint32_t> free_;
+  std::vector<std::uint32_t> free_before_;  // free cells before each 64-cell block
+  std::vector<std::uint32_t> free_guide_;   // the block of every 1024th free cell
+  std::size_t free_count_ = 0;
 };
 
 }  // namespace mote

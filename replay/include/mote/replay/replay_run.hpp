@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -92,12 +93,16 @@ inline constexpr std::size_t kOutcomeCount = 6;
 /// Everything a replay run produced.
 struct ReplayResult {
   /// An empty result for a run on `grid` with `cfg`.
-  ReplayResult(OccupancyGrid grid, LocalizerConfig cfg) : map(std::move(grid)), config(cfg) {}
+  ReplayResult(OccupancyGrid map_grid, LocalizerConfig cfg)
+      : grid(std::make_shared<const OccupancyGrid>(std::move(map_grid))), config(cfg) {}
 
-  OccupancyGrid map;          ///< the map the run used
-  LocalizerConfig config;     ///< the config it ran with
-  int threads = 0;            ///< threads the filter ran on
-  GlobalSetSize global_set;   ///< what a global start or a re-localization draws
+  /// The map the run used.
+  [[nodiscard]] const OccupancyGrid& map() const noexcept { return *grid; }
+
+  std::shared_ptr<const OccupancyGrid> grid;  ///< the map, shared with the run's Localizer
+  LocalizerConfig config;                     ///< the config it ran with
+  int threads = 0;                            ///< threads the filter ran on
+  GlobalSetSize global_set;                   ///< what a global start or a re-localization draws
   bool global_start = false;  ///< the filter started globally (drew global_set at the start)
   std::size_t scans = 0;      ///< scan frames read
   double first_stamp = 0.0;   ///< s, stamp of the first scan
