@@ -80,7 +80,7 @@ TEST(MapOverlay, TheEstimateBeforeItSettledIsNotALineThroughTheWall) {
   MapRenderOptions options;
   options.target_pixels = 80;  // 10 pixels per cell
   options.max_scale = 10;
-  MapFigure f = render_map(r.map, map_overlay(r, states), options);
+  MapFigure f = render_map(r.map(), map_overlay(r, states), options);
   ASSERT_EQ(f.scale, 10);
   const auto pixel = [&](int x, int y) { return f.image.at(f.map_area.x + x, f.map_area.y + y); };
   // The guess in the top row is a red dot; the wall between it and the bottom row stays black
