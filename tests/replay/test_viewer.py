@@ -12,8 +12,8 @@ browser: on the Intel log, opens viewer.html in headless Chromium at three updat
          with its key naming tracking, uncertain and lost in colours that stay apart under
          simulated protanopia, deuteranopia and tritanopia; the trajectory drawn in the tracking
          colour; map axes in metres within the map's extent and a time axis in seconds. In a
-         900 px wide window the page must be no wider than the window. On the DIS bag (global
-         start, lost, one re-localization): the band shows all three states and the
+         900 px wide window the page must be no wider than the window. On the Intel log kidnapped by
+         `mote kidnap` (tracking, lost, one re-localization): the band shows all three states and the
          re-localization mark, the map the lost and the tracking colours, and at the
          re-localization the page gives the re-localized count of updates.csv.
 size:    the page for the whole log with every update at the particle cap stays under 20 MB.
@@ -269,18 +269,23 @@ def check_narrow(browser, profile, url):
 
 
 def check_relocalization(args, browser, profile, work):
-    """The DIS bag: a global start, lost, one re-localization, then tracking."""
-    dis = os.path.join(args.data, "dis")
-    if not os.path.isfile(os.path.join(dis, "dis-underground.bag")):
-        print(f"SKIP the re-localization checks: {dis} is absent")
+    """The Intel log kidnapped by `mote kidnap`: tracking, lost, one re-localization, uncertain
+    while the new place has not held, then tracking."""
+    intel = os.path.join(args.data, "intel")
+    if not os.path.isfile(os.path.join(intel, "intel.clf")):
+        print(f"SKIP the re-localization checks: {intel} is absent")
         return
-    out = os.path.join(work, "dis")
-    subprocess.run([args.mote, "replay", "--map", os.path.join(dis, "dis_underground.yaml"),
-                    "--log", os.path.join(dis, "dis-underground.bag"), "--out", out, "--viewer",
+    kidnap = os.path.join(work, "kidnap")
+    subprocess.run([args.mote, "kidnap", "--log", os.path.join(intel, "intel.clf"),
+                    "--reference", os.path.join(intel, "intel.gt.tum"), "--out", kidnap],
+                   check=True, stdout=subprocess.DEVNULL)
+    out = os.path.join(work, "kidnapped")
+    subprocess.run([args.mote, "replay", "--map", os.path.join(intel, "intel.yaml"),
+                    "--log", os.path.join(kidnap, "kidnap.clf"), "--out", out, "--viewer",
                     "--quiet", "--threads", "2"], check=True)
     rows = list(csv.DictReader(open(os.path.join(out, "updates.csv"))))
     found = [k for k, r in enumerate(rows) if int(r["relocalized"]) > 0]
-    assert found, "the DIS run did not re-localize: nothing to check"
+    assert found, "the kidnapped run did not re-localize: nothing to check"
     row = rows[found[0]]
     url = "file://" + os.path.abspath(os.path.join(out, "viewer.html"))
     dom = chromium(browser, profile, f"{url}#t={found[0] + 1}", "--dump-dom")
@@ -293,18 +298,18 @@ def check_relocalization(args, browser, profile, work):
     now = re.search(r'<span id="state-now">([^<]*)</span>', dom)
     assert now and now.group(1) == row["state"] + ", re-localized", \
         f"the band says '{now and now.group(1)}' at the re-localization, updates.csv {row['state']}"
-    print(f"DIS update {found[0] + 1}: {row['relocalized']} re-localized of {row['weighed']} "
+    print(f"kidnapped Intel update {found[0] + 1}: {row['relocalized']} re-localized of {row['weighed']} "
           f"weighed, state {row['state']}")
     dom = chromium(browser, profile, url, "--dump-dom", size=f"{FOLD_WIDTH},{FOLD_HEIGHT}")
     data, colours = body_data(dom), state_colours(dom)
-    shot = os.path.join(work, "dis.png")
+    shot = os.path.join(work, "kidnapped.png")
     chromium(browser, profile, url, "--screenshot=" + shot, size=f"{FOLD_WIDTH},{FOLD_HEIGHT}")
     image = read_png_rgb(shot)
     band, on_map = rect(data, "band-rect"), rect(data, "map-rect")
     shares = {s: count_colour(image, band, colours[s]) for s in STATES}
     marks = count_colour(image, (band[0], band[1] - 10, band[2], 10), (0, 0, 0))
     trajectory = {s: count_colour(image, on_map, colours[s]) for s in ("tracking", "lost")}
-    print(f"DIS band px by state {shares}, re-localization mark {marks} px; "
+    print(f"kidnapped Intel band px by state {shares}, re-localization mark {marks} px; "
           f"trajectory px {trajectory}")
     for state in STATES:
         assert shares[state] >= band[3], f"the band shows no '{state}' ({shares[state]} px)"
