@@ -44,7 +44,10 @@ constexpr std::string_view kAbout =
     "Without --reference the filter's own trajectory is the reference: localize, fit, localize\n"
     "again with the fit, until no parameter moves by more than 10% (at most 6 rounds). Then\n"
     "chooses the online odometry noise's margin (motion_noise_margin) by tracking runs scored by\n"
-    "how well the scans fit the map at the estimates.";
+    "how well the scans fit the map at the estimates. Last, replays the log with the fitted\n"
+    "config and with the starting one (same seed and particles) and says which tracked better:\n"
+    "by the ATE with --reference, else by the scans' fit (DIR/comparison.yaml). Keep the\n"
+    "starting config when the verdict says the fit is NOT better.";
 
 calibrate::CalibrationProgress progress_bar() {
   if (isatty(STDERR_FILENO) == 0) return {};
