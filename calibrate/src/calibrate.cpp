@@ -13,6 +13,7 @@
 
 #include "calibrate_refine.hpp"
 #include "calibrate_rounds.hpp"
+#include "calibrate_score.hpp"
 #include "mote/calibrate/calibrate.hpp"
 #include "mote/core/error.hpp"
 #include "mote/core/parallel.hpp"
@@ -26,26 +27,18 @@
 namespace mote::calibrate {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using detail::effective_range_max;
+using detail::endpoint_distance;
+using detail::endpoint_fit;
+using detail::for_fit_beams;
+using detail::PosedFrame;
+using detail::read_frames;
 
-/// A frame with the pose it was taken at.
-struct PosedFrame {
-  std::size_t frame = 0;
-  Pose2 pose;
-  bool usable = true;  ///< false: its refinement found no fit (left out, and so are its increments)
-  PoseCovariance covariance;  ///< the refinement's (zero for reference poses)
-};
+using Clock = std::chrono::steady_clock;
 
 bool moved_enough(const Pose2& from, const Pose2& to, const LocalizerConfig& c) {
   const Pose2 d = between(from, to);
   return std::hypot(d.x, d.y) > c.update_min_d || std::abs(d.theta) > c.update_min_a;
-}
-
-std::vector<logs::ScanFrame> read_frames(const CalibrationOptions& o) {
-  auto source = logs::open_scan_log(o.log, o.reader);
-  std::vector<logs::ScanFrame> frames;
-  while (auto f = source->next()) frames.push_back(std::move(*f));
-  return frames;
 }
 
 // The checks that stop a calibration before any fit: a log without odometry, or one with too
@@ -156,33 +149,6 @@ void collect_filter_beams(const RayCaster& caster, const LaserScan& scan, const 
   }
 }
 
-double effective_range_max(const logs::ScanFrame& f, const LocalizerConfig& c) {
-  const double r = f.scan.range_max;
-  return c.laser_max_range > 0 ? std::min(r, c.laser_max_range) : r;
-}
-
-// The distance from a reading's endpoint to the nearest occupied cell, clamped at max_d (the
-// filter's laser_likelihood_max_dist), max_d off the map.
-double endpoint_distance(const OccupancyGrid& map, const DistanceField& field, const Pose2& sensor,
-                         double angle, double z, double max_d) {
-  const Point2 end{sensor.x + z * std::cos(angle), sensor.y + z * std::sin(angle)};
-  const CellIndex c = map.world_to_cell(end);
-  const bool inside = c.i >= 0 && c.j >= 0 && c.i < map.width() && c.j < map.height();
-  return inside ? std::min<double>(field.at(c), max_d) : max_d;
-}
-
-// The readings the sensor fits use: every `step`-th, those the filter would drop left out.
-template <class Visit>
-void for_fit_beams(const LaserScan& scan, int beams_per_scan, Visit visit) {
-  const std::size_t n = scan.ranges.size();
-  const auto step = std::max<std::size_t>(1, n / static_cast<std::size_t>(beams_per_scan));
-  for (std::size_t b = step / 2; b < n; b += step) {
-    const double z = scan.ranges[b];
-    if (!(z >= scan.range_min) || std::isnan(z)) continue;  // as the filter drops them
-    visit(b, z);
-  }
-}
-
 Samples collect(const OccupancyGrid& map, const RayCaster& caster, const DistanceField& field,
                 const std::vector<logs::ScanFrame>& frames, const std::vector<PosedFrame>& posed,
                 const CalibrationOptions& o, double range_max) {
@@ -209,38 +175,6 @@ Samples collect(const OccupancyGrid& map, const RayCaster& caster, const Distanc
     });
   }
   return s;
-}
-
-// MarginTrial's score: the mean over the poses of the per-beam mean log-density of the
-// endpoints under the fitted field, z_hit N(d; 0, sigma^2) + z_rand / range_max (table 6.3).
-MarginTrial endpoint_fit(const OccupancyGrid& map, const DistanceField& field,
-                         const std::vector<logs::ScanFrame>& frames,
-                         const std::vector<PosedFrame>& posed, const CalibrationOptions& o,
-                         double range_max, const FieldMixture& m) {
-  const double max_d = o.config.laser_likelihood_max_dist;
-  const double norm = m.z_hit / (std::sqrt(2.0 * std::numbers::pi) * m.sigma_hit);
-  double sum = 0.0;
-  std::size_t scored = 0;
-  for (const PosedFrame& p : posed) {
-    const logs::ScanFrame& f = frames[p.frame];
-    const Pose2 sensor = compose(p.pose, f.scan.sensor_pose);
-    double scan_sum = 0.0;
-    std::size_t beams = 0;
-    for_fit_beams(f.scan, o.beams_per_scan, [&](std::size_t b, double z) {
-      if (z >= range_max) return;
-      const double d =
-          endpoint_distance(map, field, sensor, sensor.theta + f.scan.beam_angle(b), z, max_d);
-      scan_sum += std::log(norm * std::exp(-0.5 * d * d / (m.sigma_hit * m.sigma_hit)) +
-                           m.z_rand / range_max);
-      ++beams;
-    });
-    if (beams == 0) continue;
-    sum += scan_sum / static_cast<double>(beams);
-    ++scored;
-  }
-  const double mean =
-      scored == 0 ? -std::numeric_limits<double>::infinity() : sum / static_cast<double>(scored);
-  return {.margin = 0, .fit = mean, .poses = scored};
 }
 
 // The filter's poses re-estimated from their own scans (calibrate_refine.hpp), with the
@@ -295,8 +229,7 @@ void choose_margin(const OccupancyGrid& map, const DistanceField& field,
                    const std::vector<logs::ScanFrame>& frames, const CalibrationOptions& o,
                    double range_max, const PosedFrame& start, CalibrationResult& result) {
   const CalibrationRound& last = result.rounds.back();
-  const FieldMixture scoring{last.field.params.z_hit, last.field.params.z_rand,
-                             std::max(last.field.params.sigma_hit, last.beam.params.sigma_hit)};
+  const FieldMixture scoring = detail::scoring_field(last);
   int run = static_cast<int>(result.rounds.size());
   // Two seeds per margin: one run's fit varies by about 0.001 nats between seeds, the steps
   // near the best differ by a few times that, and a margin that loses one seed's track must

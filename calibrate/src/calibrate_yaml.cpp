@@ -179,6 +179,10 @@ std::string calibration_yaml(const CalibrationResult& r) {
       << num(f.largest_change)
       << (f.largest_change_of.empty() ? "" : " (" + f.largest_change_of + ")") << ".\n";
   }
+  if (r.comparison) {
+    y << "# Replayed with both on this log: " << (fitted_is_better(*r.comparison) ? "" : "NOT ")
+      << "better than " << r.comparison->start_name << " (comparison.yaml).\n";
+  }
   y << "# Load with mote replay --config or mote::load_config.\n\n";
   sensor_section(y, r, f);
   motion_section(y, r, f);
@@ -197,6 +201,12 @@ std::filesystem::path write_calibration(const CalibrationResult& result,
   if (!out) throw Error("cannot write '" + yaml.string() + "'");
   out.close();
   write_calibration_png(result, directory / "calibration.png");
+  if (result.comparison) {
+    const std::filesystem::path path = directory / "comparison.yaml";
+    std::ofstream c(path);
+    c << comparison_yaml(*result.comparison);
+    if (!c) throw Error("cannot write '" + path.string() + "'");
+  }
   return yaml;
 }
 

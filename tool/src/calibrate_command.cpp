@@ -7,6 +7,7 @@
 #include <string>
 
 #include "args.hpp"
+#include "calibrate_compare.hpp"
 #include "commands.hpp"
 #include "mote/calibrate/calibrate.hpp"
 #include "mote/engine/localizer_config.hpp"
@@ -25,7 +26,7 @@ constexpr std::array<FlagSpec, 11> kFlags{{
     {"config", "CONFIG.yaml", "starting LocalizerConfig; fitted values replace its fields"},
     {"model", "NAME",
      "laser model the config is for: likelihood_field or beam (default likelihood_field)"},
-    {"rounds", "N", "self-calibration rounds at most (default 3)"},
+    {"rounds", "N", "self-calibration rounds at most (default 6)"},
     {"beams", "N", "beams per scan the sensor fits use (default 90)"},
     {"threads", "N", "worker threads, 0 = every core (default 0)"},
     {"particles", "N",
@@ -41,9 +42,12 @@ constexpr std::string_view kAbout =
     "z_hit/z_rand/sigma_hit (maximum likelihood) and the odometry alphas (maximum likelihood,\n"
     "section 5.4) and writes DIR/config.yaml (for mote replay --config) and DIR/calibration.png.\n"
     "Without --reference the filter's own trajectory is the reference: localize, fit, localize\n"
-    "again with the fit, until no parameter moves by more than 10% (at most 3 rounds). Then\n"
+    "again with the fit, until no parameter moves by more than 10% (at most 6 rounds). Then\n"
     "chooses the online odometry noise's margin (motion_noise_margin) by tracking runs scored by\n"
-    "how well the scans fit the map at the estimates.";
+    "how well the scans fit the map at the estimates. Last, replays the log with the fitted\n"
+    "config and with the starting one (same seed and particles) and says which tracked better:\n"
+    "by the ATE with --reference, else by the scans' fit (DIR/comparison.yaml). Keep the\n"
+    "starting config when the verdict says the fit is NOT better.";
 
 calibrate::CalibrationProgress progress_bar() {
   if (isatty(STDERR_FILENO) == 0) return {};
@@ -195,10 +199,16 @@ int calibrate_command(std::span<char* const> words) {
   const std::filesystem::path out = args.required("out");
   const calibrate::CalibrationOptions options = options_from(args);
   replay::make_output_folder(out);  // before the rounds of replays, not after them
-  const calibrate::CalibrationResult result = calibrate::calibrate(options);
+  calibrate::CalibrationResult result = calibrate::calibrate(options);
+  const auto start = args.text("config");
+  std::cerr << "mote calibrate: replaying the log with the fitted config and with "
+            << (start ? *start : "mote's defaults") << " to compare them\n";
+  result.comparison = compare_with_start(options, result, start ? *start : "mote's defaults");
   const std::filesystem::path yaml = calibrate::write_calibration(result, out);
   print_summary(result, yaml);
   print_verdicts(result, options);
+  std::printf("verdict: %s\n",
+              calibrate::comparison_verdict(*result.comparison, yaml.string()).c_str());
   return 0;
 }
 

@@ -11,6 +11,7 @@
 /// table 5.5 / 5.6's model).
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -21,6 +22,7 @@
 #include "mote/engine/localizer_config.hpp"
 #include "mote/engine/odometry_noise.hpp"
 #include "mote/logs/scan_source.hpp"
+#include "mote/logs/tum.hpp"
 
 namespace mote::calibrate {
 
@@ -238,7 +240,7 @@ struct CalibrationOptions {
   /// rounds stop once no parameter moves by more than `settle` (relative, weights absolute, the
   /// odometry alphas by the mean relative change of the noise they predict for the log's
   /// increments).
-  int max_rounds = 3;
+  int max_rounds = 6;
   double settle = 0.1;
   std::size_t min_scans = 50;  ///< fewer scans with motion is "log too short"
   /// Particles of the margin search's tracking runs (min = max); 0 keeps the config's KLD
@@ -276,6 +278,36 @@ struct CalibrationSamples {
   double range_max = 0;
 };
 
+/// The fitted config against the one the calibration started from (mote's defaults, or the
+/// --config file) on the calibration's own log: one replay with each, the same seed, particle
+/// counts and start. `mote calibrate` runs the replays (the replay layer's); the verdict and
+/// the config report them, since a fit that settled can still track worse than the defaults.
+struct StartComparison {
+  /// What was compared: "ate_rmse_m" (m, RMS position error against the reference; lower is
+  /// better) or "scan_fit" (without a reference: scan_fit of each run's trajectory, nats;
+  /// higher is better).
+  std::string metric;
+  double fitted = 0;        ///< the metric's value replaying with the fitted config
+  double start = 0;         ///< the same with the starting config
+  std::string start_name;   ///< "mote's defaults", or the starting config's file
+  int min_particles = 0;    ///< of both replays
+  int max_particles = 0;    ///< of both replays
+  std::uint64_t seed = 0;   ///< of both replays
+  std::size_t updates = 0;  ///< updates of the fitted config's replay
+  std::size_t start_updates = 0;
+};
+
+/// Whether the fitted config did strictly better than the starting one (a tie keeps the start).
+[[nodiscard]] bool fitted_is_better(const StartComparison& c);
+
+/// The verdict line on the comparison (without the leading "verdict: "): which config did better
+/// on the log, by how much, and which one to run (`fitted_config`: the written config's path).
+[[nodiscard]] std::string comparison_verdict(const StartComparison& c,
+                                             const std::string& fitted_config);
+
+/// DIR/comparison.yaml's text: the metric, both values, which is better, particles and seed.
+[[nodiscard]] std::string comparison_yaml(const StartComparison& c);
+
 struct CalibrationResult {
   LocalizerConfig config;  ///< the starting config with every fitted value in
   LocalizerConfig start;   ///< the starting config (CalibrationOptions::config)
@@ -290,7 +322,17 @@ struct CalibrationResult {
   std::vector<MarginTrial> margins;
   CalibrationSamples samples;
   double wall_s = 0;
+  /// Set by the caller after calibrate() (mote calibrate replays both configs); written to
+  /// config.yaml as a comment and to DIR/comparison.yaml by write_calibration.
+  std::optional<StartComparison> comparison;
 };
+
+/// How well the log's scans fit the map along `trajectory` (a replay's estimates, stamped as
+/// the scans they were made at): MarginTrial's score, the mean over the poses of the per-beam
+/// mean log-density (nats) of the endpoints under the last round's field, the same for any
+/// config, so that runs with different sensor models compare. Reads the map and log again.
+[[nodiscard]] double scan_fit(const CalibrationOptions& o, const CalibrationResult& r,
+                              const std::vector<logs::StampedPose>& trajectory);
 
 /// Whether one group of fitted parameters (the sensor model, the motion model) settled.
 struct GroupVerdict {
@@ -317,8 +359,9 @@ struct GroupVerdict {
 /// for a log too short to fit from, a log without odometry, or a filter that never converges.
 [[nodiscard]] CalibrationResult calibrate(const CalibrationOptions& options);
 
-/// Writes DIR/config.yaml (flat amcl names, every value commented with its source) and
-/// DIR/calibration.png. Returns the config path. Throws Error when a file cannot be written.
+/// Writes DIR/config.yaml (flat amcl names, every value commented with its source),
+/// DIR/calibration.png and, with result.comparison, DIR/comparison.yaml. Returns the config path.
+/// Throws Error when a file cannot be written.
 std::filesystem::path write_calibration(const CalibrationResult& result,
                                         const std::filesystem::path& directory);
 
