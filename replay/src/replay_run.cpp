@@ -41,7 +41,8 @@ bool initialize(Localizer& filter, const ReplayOptions& options,
   return false;
 }
 
-void record_update(ReplayResult& result, const Localizer& filter, double stamp) {
+void record_update(ReplayResult& result, const Localizer& filter, double stamp,
+                   const Pose2& odometry) {
   const UpdateStats& stats = filter.last_update();
   result.trajectory.push_back({stamp, filter.estimate().refined.pose});
   result.particle_trajectory.push_back({stamp, filter.estimate().best().mean});
@@ -62,7 +63,8 @@ void record_update(ReplayResult& result, const Localizer& filter, double stamp) 
                             .hit_share = stats.hit_share,
                             .see_through = stats.see_through,
                             .misfit = stats.misfit,
-                            .refined = filter.estimate().refined.pose});
+                            .refined = filter.estimate().refined.pose,
+                            .odometry = odometry});
 }
 
 void count_outcome(ReplayResult& result, const UpdateStats& stats) {
@@ -99,7 +101,7 @@ void run_frames(ReplayResult& result, Localizer& filter, logs::ScanSource& sourc
     filter.update(frame->odometry, frame->scan);
     count_outcome(result, filter.last_update());
     if (filter.last_update().ran()) {
-      record_update(result, filter, frame->stamp);
+      record_update(result, filter, frame->stamp, frame->odometry);
       if (options.on_update) options.on_update(filter, *frame);
     }
     if (options.progress) options.progress(result.scans);

@@ -17,6 +17,7 @@
 #include "mote/core/error.hpp"
 #include "mote/engine/isa.hpp"
 #include "mote/replay/profile.hpp"
+#include "mote/replay/relocalization_moves.hpp"
 #include "mote/replay/report_json.hpp"
 #include "mote/replay/verdict.hpp"
 
@@ -65,6 +66,29 @@ void write_outcomes(JsonWriter& json, const ReplayResult& r) {
   json.end_object();
 }
 
+// Each re-localization: when, when the filter read tracking again (null: never) and how far
+// from the pose before it, carried by the odometry (relocalization_moves.hpp).
+void write_moves(JsonWriter& json, const ReplayResult& r, const RelocalizationMoves& m) {
+  json.member("relocalizations_moved_pose", std::uint64_t{m.moved});
+  json.member("relocalizations_unsettled", std::uint64_t{m.unsettled});
+  json.member("moved_pose_above_m", kMovedPoseM);
+  json.key("relocalization_moves").begin_array();
+  for (const RelocalizationMove& move : m.moves) {
+    json.begin_object();
+    json.member("at_s", r.updates[move.update].stamp - r.first_stamp);
+    const bool settled = move.settled_update < r.updates.size();
+    json.key("settled_at_s");
+    if (settled) {
+      json.value(r.updates[move.settled_update].stamp - r.first_stamp);
+    } else {
+      json.null();
+    }
+    json.member("moved_m", move.moved_m);
+    json.end_object();
+  }
+  json.end_array();
+}
+
 // Updates in each localization state, over the run and (with a reference) from the time the
 // run converged on; and how often the filter re-localized.
 void write_states(JsonWriter& json, const ReplayResult& r) {
@@ -97,6 +121,7 @@ void write_states(JsonWriter& json, const ReplayResult& r) {
   shares("share", all);
   if (std::isfinite(from)) shares("share_after_convergence", after);
   json.member("relocalizations", std::uint64_t{relocalizations});
+  write_moves(json, r, relocalization_moves(r.updates));
   json.end_object();
   json.key("global_set").begin_object();
   json.member("particles", std::uint64_t{r.global_set.particles});
@@ -314,7 +339,15 @@ std::string state_text(const ReplayResult& r) {
   std::string text = pct(LocalizationState::kTracking) + " / " +
                      pct(LocalizationState::kUncertain) + " / " + pct(LocalizationState::kLost);
   if (!r.updates.empty()) text += std::string(", ends ") + name_of(r.updates.back().state);
-  return text + ", " + std::to_string(relocalizations) + " re-localizations";
+  text.append(", ").append(std::to_string(relocalizations)).append(" re-localizations");
+  if (relocalizations == 0) return text;
+  const RelocalizationMoves moves = relocalization_moves(r.updates);
+  text.append(" (").append(std::to_string(moves.moved)).append(" moved the pose more than ");
+  text.append(str(kMovedPoseM, 0)).append(" m");
+  if (moves.unsettled > 0) {
+    text.append(", ").append(std::to_string(moves.unsettled)).append(" never settled");
+  }
+  return text.append(")");
 }
 
 void print_summary(std::ostream& out, const ReplayResult& result, const ReportOptions& options) {

@@ -74,7 +74,8 @@ struct UpdateRecord {
   double hit_share = 0.0;                                   ///< UpdateStats::hit_share
   double see_through = 0.0;                                 ///< UpdateStats::see_through
   double misfit = 0.0;                                      ///< UpdateStats::misfit
-  Pose2 refined;  ///< the best hypothesis matched to the map
+  Pose2 refined;   ///< the best hypothesis matched to the map
+  Pose2 odometry;  ///< the scan's odometry pose (odom frame)
 };
 
 /// How a run recovered from a kidnapping (ReplayOptions::kidnapped_at).
