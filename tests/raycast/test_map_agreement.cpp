@@ -29,7 +29,7 @@ struct Ray {
 /// "along a grid line" and "through a corner" are defined, then mapped to the map frame.
 class RayMaker {
  public:
-  explicit RayMaker(const OccupancyGrid& grid) : grid_(grid) {
+  explicit RayMaker(const OccupancyGrid& grid) : grid_(grid), free_(grid.free_cells()) {
     for (std::size_t k = 0; k < grid.cell_count(); ++k) {
       if (grid.cells()[k] == CellState::kOccupied) walls_.push_back(k);
     }
@@ -45,7 +45,7 @@ class RayMaker {
     switch (kind) {
       case 0: {  // uniform in free space, any direction
         const double a = angle();
-        return to_map(in_cell(pick(grid_.free_cells())), a);
+        return to_map(in_cell(pick(free_)), a);
       }
       case 1: {  // inside an occupied cell
         const double a = angle();
@@ -61,11 +61,11 @@ class RayMaker {
         return to_map(g, a);
       }
       case 3: {  // along a grid line through a free cell's corner, axis aligned
-        const Point2 g = corner(pick(grid_.free_cells()));
+        const Point2 g = corner(pick(free_));
         return to_map(g, std::numbers::pi / 2 * static_cast<double>(integer(4)));
       }
       default: {  // from a corner through other corners (diagonals and knight moves)
-        const Point2 g = corner(pick(grid_.free_cells()));
+        const Point2 g = corner(pick(free_));
         const double dx = static_cast<double>(integer(5)) - 2.0;
         const double dy = static_cast<double>(integer(5)) - 2.0;
         return to_map(g, dx == 0.0 && dy == 0.0 ? 0.25 * std::numbers::pi : std::atan2(dy, dx));
@@ -96,6 +96,8 @@ class RayMaker {
   int integer(int n) { return std::uniform_int_distribution<>(0, n - 1)(rng_); }
 
   const OccupancyGrid& grid_;
+  // Once: free_cells() builds the list from the grid's free-space index on every call.
+  const std::vector<std::uint32_t> free_;
   std::vector<std::size_t> walls_;
   std::mt19937_64 rng_{20240611};
 };
