@@ -126,7 +126,9 @@ void draw_paths(RgbImage& img, const Projection& at, const MapOverlay& o, const 
 void draw_markers(RgbImage& img, const Projection& at, const MapOverlay& o,
                   const style::Strokes& s) {
   if (o.start || !o.estimate.empty()) {
-    const Point2 start = at(o.start.value_or(o.estimate.front().pose));
+    // Not value_or(): its argument is evaluated even when the start is given, and a run with no
+    // update has no front() to read.
+    const Point2 start = at(o.start ? *o.start : o.estimate.front().pose);
     if (std::isfinite(start.x + start.y)) draw_start_marker(img, start.x, start.y, s.marker);
   }
   if (!o.estimate.empty()) {
