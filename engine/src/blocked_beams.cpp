@@ -9,6 +9,7 @@
 
 #include "field_walker.hpp"
 #include "mote/core/parallel.hpp"
+#include "mote/engine/hypothesis_hold.hpp"
 
 namespace mote {
 namespace {
@@ -23,7 +24,22 @@ double hit_band(const MixtureParams& m, double range_max) {
   return ratio > 1.0 ? m.sigma_hit * std::sqrt(2.0 * std::log(ratio)) : 0.0;
 }
 
-// Mean range of the readings that have an endpoint (0 when none has).
+// Index of the pose in `places` nearest to p (0 when there is none).
+std::size_t nearest(const std::vector<Pose2>& places, const Pose2& p) {
+  std::size_t best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < places.size(); ++k) {
+    const double d = std::hypot(places[k].x - p.x, places[k].y - p.y);
+    if (d < best_d) {
+      best_d = d;
+      best = k;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 double mean_endpoint_range(const BeamSet& beams) {
   double sum = 0.0;
   std::size_t count = 0;
@@ -34,8 +50,6 @@ double mean_endpoint_range(const BeamSet& beams) {
   }
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
-
-}  // namespace
 
 Point2 BlockedBeamFilter::direction(std::size_t b, const SensorSample& s) const {
   return {s.cos_theta * beam_cos_[b] - s.sin_theta * beam_sin_[b],
@@ -109,10 +123,19 @@ bool BlockedBeamFilter::focused(const std::vector<PoseEstimate>& clusters, doubl
   return settled >= kFocusedWeight;
 }
 
-bool BlockedBeamFilter::one_place_on(const BeamSet& beams,
-                                     const std::vector<PoseEstimate>& clusters) {
+BlockedBeamFilter::Places BlockedBeamFilter::places_on(const BeamSet& beams,
+                                                       const std::vector<PoseEstimate>& clusters) {
+  constexpr double kHypothesisWeight = 1.0 - kFocusedWeight;
   const double range = mean_endpoint_range(beams);
-  return focused(clusters, range, range);
+  std::vector<Pose2> anchors;  // the heaviest hypothesis of each place (clusters: heaviest first)
+  for (const PoseEstimate& c : clusters) {
+    if (c.weight < kHypothesisWeight) continue;
+    const bool known = std::any_of(anchors.begin(), anchors.end(), [&](const Pose2& a) {
+      return !HypothesisHold::other_place(a, c.mean, range);
+    });
+    if (!known) anchors.push_back(c.mean);
+  }
+  return {.count = anchors.size(), .one = anchors.size() == 1 && focused(clusters, range, range)};
 }
 
 bool BlockedBeamFilter::focused_on(const BeamSet& beams, const MapField& map,
@@ -120,8 +143,27 @@ bool BlockedBeamFilter::focused_on(const BeamSet& beams, const MapField& map,
   return focused(clusters, hit_band(map.mixture, beams.range_max), mean_endpoint_range(beams));
 }
 
+bool BlockedBeamFilter::blocked_at_every_place(const BeamSet& beams, std::size_t b,
+                                               const MapField& map, double band) const {
+  if (!(beams.range[b] < beams.range_max)) return false;
+  const FieldWalker walk(map.grid, map.signed_field);
+  std::vector<double> blocked(place_total_.size(), 0.0);
+  for (const SensorSample& s : samples_) {
+    if (ends_on_wall(beams, b, s, walk, map.mixture.sigma_hit)) continue;
+    if (ray_free(beams, b, s, walk, band)) blocked[s.place] += s.weight;
+  }
+  bool any = false;
+  for (std::size_t k = 0; k < place_total_.size(); ++k) {
+    if (place_total_[k] < (1.0 - kFocusedWeight) * total_) continue;
+    if (!(blocked[k] > kAgreement * place_total_[k])) return false;
+    any = true;
+  }
+  return any;
+}
+
 std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleView& p,
-                                          const MapField& map, bool focused) {
+                                          const MapField& map, bool focused,
+                                          const std::vector<Pose2>& places) {
   const std::size_t n = p.size();
   const double band = hit_band(map.mixture, beams.range_max);
   if (n == 0 || beams.empty() || !std::isfinite(band)) return 0;
@@ -136,10 +178,12 @@ std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleVie
     if (!(w > 0.0) || !is_finite(p.pose(i))) continue;
     const Pose2 sensor = compose(p.pose(i), beams.sensor_pose);
     const double theta = sensor.theta - grid_theta;
-    samples_.push_back(
-        {walk.cell_point({sensor.x, sensor.y}), std::cos(theta), std::sin(theta), w});
+    samples_.push_back({walk.cell_point({sensor.x, sensor.y}), std::cos(theta), std::sin(theta), w,
+                        nearest(places, p.pose(i))});
     total_ += w;
   }
+  place_total_.assign(std::max<std::size_t>(1, places.size()), 0.0);
+  for (const SensorSample& s : samples_) place_total_[s.place] += s.weight;
   if (!(total_ > 0.0)) return 0;
   beam_cos_.resize(beams.size());
   beam_sin_.resize(beams.size());
@@ -150,7 +194,10 @@ std::size_t BlockedBeamFilter::operator()(BeamSet& beams, const ConstParticleVie
   // Beams are independent: decided in parallel, each by its own fixed sample order.
   drop_.assign(beams.size(), 0);
   par::for_each_chunk(beams.size(), kBeamGrain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; ++b) drop_[b] = majority_blocked(beams, b, map, band);
+    for (std::size_t b = begin; b < end; ++b) {
+      drop_[b] = places.size() > 1 ? blocked_at_every_place(beams, b, map, band)
+                                   : majority_blocked(beams, b, map, band);
+    }
   });
   std::size_t kept = 0;
   for (std::size_t b = 0; b < beams.size(); ++b) {

@@ -13,6 +13,10 @@
 
 namespace mote {
 
+// Mean range of the readings of `beams` that have an endpoint (0 when none has): the scale of
+// the scan.
+[[nodiscard]] double mean_endpoint_range(const BeamSet& beams);
+
 /// The distance filter of Fox, Burgard and Thrun ("Markov localization for mobile robots in
 /// dynamic environments", JAIR 11, 1999) on the map's distance field. A reading z
 /// is blocked at a pose when the map holds no obstacle along the beam up to z + band: the beam
@@ -47,8 +51,15 @@ class BlockedBeamFilter {
   /// `map` supplies the map, its distance field and the sensor mixture; `focused` is focused()
   /// of the belief before this scan, as the Localizer judged it once for the whole update
   /// (the state and tracking tempering read the same verdict). Nothing is removed unless it is.
+  /// `places`: the poses of the places the belief holds (one per place, from the last update;
+  /// empty or one when it holds one). Where it holds several, a beam is left out only when
+  /// each place that holds a tenth of the sample's weight or more finds it blocked by a
+  /// majority of its own: a reading blocked at one place but ending on a wall at another is
+  /// what tells them apart (the pillar that only one of two look-alike wings holds read as
+  /// blocked at the heavier twin and was dropped for every particle, so the scans could never
+  /// tell the wings apart).
   std::size_t operator()(BeamSet& beams, const ConstParticleView& particles, const MapField& map,
-                         bool focused);
+                         bool focused, const std::vector<Pose2>& places = {});
 
   /// Whether the belief has settled closely enough to say where the walls are: clusters that
   /// each hold at least 1 - kFocusedWeight of it and whose spread moves a typical endpoint by
@@ -65,17 +76,25 @@ class BlockedBeamFilter {
   /// focused() at the hit band of the map's mixture and the mean range of the endpoints of beams.
   [[nodiscard]] static bool focused_on(const BeamSet& beams, const MapField& map,
                                        const std::vector<PoseEstimate>& clusters);
-  /// Whether the belief is one place, however wide (the localization state's test): focused()
-  /// at the scale of the scan itself, the mean range of the endpoints of beams. A hypothesis
-  /// whose spread moves an endpoint by less than the scan reaches is one place that the scan
-  /// match resolves; a wider one is a region of the building, as a fresh global set is (its
-  /// heading spread alone, pi / sqrt(3) rad, moves an endpoint by 1.8 ranges). The hit band
-  /// would be the wrong scale here: adaptive tempering and the odometry noise before its fit
-  /// widen the cloud to 0.6 m and 19 degrees at the start of the Edmonton log while the
-  /// refined pose is within 0.06 m of the reference, and the state read `uncertain` for its
-  /// first 50 s.
-  [[nodiscard]] static bool one_place_on(const BeamSet& beams,
-                                         const std::vector<PoseEstimate>& clusters);
+  /// The belief's places at the scale of the scan, the mean range of the endpoints of beams
+  /// (the localization state's test of one hypothesis). Its hypotheses (clusters of 1 -
+  /// kFocusedWeight of the weight or more) are grouped, each with the first heavier one it is
+  /// not another place from (HypothesisHold::other_place at that range); `one`: a single place,
+  /// where focused() at that scale holds. A hypothesis whose spread moves an endpoint by less
+  /// than the scan reaches is one place that the scan match resolves; a wider one is a region
+  /// of the building, as a fresh global set is (its heading spread alone, pi / sqrt(3) rad,
+  /// moves an endpoint by 1.8 ranges). The hit band would be the wrong scale here: adaptive
+  /// tempering and the odometry noise before its fit widen the cloud to 0.6 m and 19 degrees at
+  /// the start of the Edmonton log while the refined pose is within 0.06 m of the reference,
+  /// and the state read `uncertain` for its first 50 s. Two tight clusters at look-alike
+  /// places 12 m apart (Wean's corridors) pass focused() together, and a global search that
+  /// ended there read `tracking` at one of them.
+  struct Places {
+    std::size_t count = 0;
+    bool one = false;
+  };
+  [[nodiscard]] static Places places_on(const BeamSet& beams,
+                                        const std::vector<PoseEstimate>& clusters);
   /// Position standard deviation plus heading standard deviation times `range`: how far the
   /// cluster's spread moves an endpoint at that range.
   [[nodiscard]] static double endpoint_spread(const PoseEstimate& cluster, double range);
@@ -88,6 +107,7 @@ class BlockedBeamFilter {
     double cos_theta = 1.0;
     double sin_theta = 0.0;
     double weight = 0.0;
+    std::size_t place = 0;  // index of the nearest of `places`
   };
   // Beam b's unit direction in the grid frame at sample s: the sample's heading plus the
   // beam's angle, by angle addition (no trigonometry per pair).
@@ -103,6 +123,10 @@ class BlockedBeamFilter {
   // samples: kSample).
   [[nodiscard]] bool majority_blocked(const BeamSet& beams, std::size_t b, const MapField& map,
                                       double band) const;
+  // Whether every place holding a tenth of the samples' weight or more finds beam b blocked by
+  // more than kAgreement of its own samples' weight (several places).
+  [[nodiscard]] bool blocked_at_every_place(const BeamSet& beams, std::size_t b,
+                                            const MapField& map, double band) const;
 
   static constexpr std::size_t kBeamGrain = 16;  // beams per parallel task
 
@@ -111,6 +135,7 @@ class BlockedBeamFilter {
   std::vector<double> beam_sin_;
   std::vector<unsigned char> drop_;  // per beam: 1 when left out
   double total_ = 0.0;               // the samples' weight
+  std::vector<double> place_total_;  // per place: its samples' weight
 };
 
 }  // namespace mote

@@ -22,14 +22,22 @@ LocalizationState LocalizationMonitor::update(double see_through, double hit_sha
   if (!std::isfinite(misfit)) return state_;
   smoothed_ = started_ ? smoothed_ + config_.smoothing * (misfit - smoothed_) : misfit;
   started_ = true;
+  if (settling_ > 0) --settling_;
   if (smoothed_ > config_.lost_misfit) {
     state_ = LocalizationState::kLost;
-  } else if (one_place) {
+  } else if (one_place && settling_ == 0) {
     state_ = LocalizationState::kTracking;
   } else {
     state_ = LocalizationState::kUncertain;
   }
   return state_;
+}
+
+void LocalizationMonitor::reset_after_relocalization() noexcept {
+  reset();
+  // The average's window, about 1 / smoothing updates: one scan that fits a fresh place is the
+  // chance a global set offers at every look-alike place, not a place that has held.
+  settling_ = static_cast<int>(std::ceil(1.0 / config_.smoothing));
 }
 
 }  // namespace mote

@@ -88,6 +88,10 @@ void Localizer::Impl::start_fresh(bool settled) {
   odometry_noise.reset();
   last_fix = {};
   correlation = 0.0;
+  has_held = false;
+  belief_places = 0;
+  place_anchors.clear();
+  hold.end();
   motion = make_motion(config);
   stats = UpdateStats{};
   stats.particles = store.size();
@@ -147,8 +151,10 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
       });
       timed(stats.ms.estimate, [&] {
         update_estimate();
+        keep_places(odometry);
         judge_focus();
         judge_localization();
+        remember_places();
       });
     });
   } catch (...) {
@@ -182,6 +188,7 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
 
   s.force_update = false;
   s.run_filter(odometry);
+  s.hold_reported_place(odometry);
   s.stats.outcome = s.degenerate     ? UpdateOutcome::kUnexplainedScan
                     : s.has_odometry ? UpdateOutcome::kUpdated
                                      : UpdateOutcome::kInitialized;

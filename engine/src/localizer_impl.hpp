@@ -12,6 +12,7 @@
 #include "mote/engine/beam_model.hpp"
 #include "mote/engine/beams.hpp"
 #include "mote/engine/executor.hpp"
+#include "mote/engine/hypothesis_hold.hpp"
 #include "mote/engine/kld.hpp"
 #include "mote/engine/likelihood_field_model.hpp"
 #include "mote/engine/localization_state.hpp"
@@ -59,6 +60,8 @@ struct Localizer::Impl {
   void count_lost_updates();
   void maybe_relocalize();
   void reset_relocalization(bool settled);
+  // A local search's particle count for a disc of `radius` m (global_particles_per_bin's).
+  [[nodiscard]] std::size_t local_count(double radius) const;
   // Whether a lost filter runs this scan although the robot has not moved (kStillScans).
   [[nodiscard]] bool still_update_due(const LaserScan& scan);
   void update_estimate();
@@ -73,6 +76,17 @@ struct Localizer::Impl {
   // After an update: the residual of the estimate's motion against the odometry's, and the
   // motion model refitted from the residuals so far.
   void adapt_motion_noise(const Pose2& odometry);
+  // After judge_localization(): keeps the reported pose on the place the filter tracked while a
+  // hypothesis elsewhere challenges it, until the challenger wins (hypothesis_hold.hpp).
+  void hold_reported_place(const Pose2& odometry);
+  void hold_report(const ScanMatch& at_held);  // reports the held place, at best uncertain
+  // After update_estimate() (keep_places.cpp): a place of the previous update whose cluster
+  // fell below a tenth of the belief while this scan fits it as well as the best hypothesis
+  // is raised back to a tenth (keep_place), so that look-alike places are not resampled away
+  // by the luck of a few hundred particles; remember_places() notes the places for the next.
+  void keep_places(const Pose2& odometry);
+  bool keep_place(const PoseEstimate& place);
+  void remember_places();
 
   // Initialization (localizer.cpp): forget everything but the map and the config.
   void start_fresh(bool settled);                  // settled: around a given pose, not a global set
@@ -113,20 +127,28 @@ struct Localizer::Impl {
   std::uint64_t updates_since_resample = 0;  // 64 bits: no wrap on a live run of years
   RelocalizationSchedule schedule;           // when a lost filter re-localizes
   bool relocalize_due = false;               // re-localize before the next motion step
+  bool relocalize_locally = false;           // ... by a local search (count_lost_updates)
   std::uint64_t still_scans = 0;             // scans in a row without motion while lost
   bool force_update = false;  // the next update runs without motion (force_next_update)
   // The verdict of judge_focus() on the clusters of estimate: made after each update's estimate
   // (where the state reads it) and held for the next update's blocked-beam filter and tempering,
   // which weigh against that same belief; made before the first update after initialization.
   bool focused = false;
-  // The same judgement at the scale of the scan (BlockedBeamFilter::one_place_on): the state's
-  // test of one hypothesis, which a cloud widened by tempering still passes.
+  // The same judgement at the scale of the scan (BlockedBeamFilter::places_on): the state's
+  // test of one hypothesis at one place, which a cloud widened by tempering still passes.
   bool one_place = false;
-  bool focus_judged = false;
+  std::size_t belief_places = 0;     // places_on()'s count, for the next update's resampling
+  std::vector<Pose2> place_anchors;  // the places after the last update (remember_places)
+  bool focus_judged = false;         // false between initialization and the first judge_focus()
   // Running geometric mean of ScanMatch::correlation over the matches taken while tracking
   // (learn_correlation), by which the next match's covariance is inflated; 0 until the first,
   // which then inflates by its own.
-  double correlation = 0.0;  // false between initialization and the first judge_focus()
+  double correlation = 0.0;
+  // The place last reported (the refined pose after the previous update), once the filter has
+  // tracked since initialization; what a challenger must out-explain (hold_reported_place).
+  bool has_held = false;
+  Pose2 held;
+  HypothesisHold hold;
 };
 
 }  // namespace mote

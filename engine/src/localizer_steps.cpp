@@ -199,7 +199,8 @@ void Localizer::Impl::predict(const Pose2& odometry) {
 
 void Localizer::Impl::drop_blocked_beams() {
   if (!config.unmapped_obstacle_filter) return;
-  stats.blocked_beams = blocked_filter(beams, std::as_const(store).view(), *field, focused);
+  stats.blocked_beams =
+      blocked_filter(beams, std::as_const(store).view(), *field, focused, place_anchors);
   stats.beams = beams.size();
   if (beams.empty()) {
     stats.reason =
@@ -268,7 +269,12 @@ void Localizer::Impl::maybe_resample() {
     return;
   }
   updates_since_resample = 0;
-  resample_kld_systematic(store, bins, kld, config.seed, step, config.grain);
+  // Each place the belief holds is a belief of its own to Fox's bound: min_particles each, so
+  // that look-alike places are not left to the luck of a few hundred particles between them.
+  KldConfig per_place = kld;
+  per_place.min_particles =
+      std::min(kld.max_particles, kld.min_particles * std::max<std::size_t>(1, belief_places));
+  resample_kld_systematic(store, bins, per_place, config.seed, step, config.grain);
   stats.resampled = true;
 }
 
@@ -362,7 +368,14 @@ void Localizer::Impl::judge_focus() {
   // The mean range of every reading with an endpoint: the scan the clusters were judged with
   // (or, before the first update, the scan about to be weighed).
   focused = BlockedBeamFilter::focused_on(readings, *field, estimate.clusters);
-  one_place = BlockedBeamFilter::one_place_on(readings, estimate.clusters);
+  // A scan without an endpoint has no scale to tell places apart by: the last verdict stands.
+  if (mean_endpoint_range(readings) > 0.0 || !focus_judged) {
+    const BlockedBeamFilter::Places places =
+        BlockedBeamFilter::places_on(readings, estimate.clusters);
+    one_place = places.one;
+    belief_places = places.count;
+  }
+  stats.places = belief_places;
   focus_judged = true;
 }
 

@@ -119,26 +119,48 @@ std::size_t inject_into_weighted(const ParticleView& p, double probability, cons
   return replaced;
 }
 
-void append_uniform(ParticleStore& store, std::size_t n, double kept, const FreeSpace& space,
-                    std::uint64_t seed, std::uint64_t step, std::size_t grain) {
-  if (n == 0 || space.free_cell_count() == 0) return;
+namespace {
+
+// Appends n particles drawn by pose(i) with the weights append_uniform() gives them.
+template <class PoseOf>
+void append_weighted(ParticleStore& store, std::size_t n, double kept, std::size_t grain,
+                     const PoseOf& pose) {
   const std::size_t old = store.size();
   store.resize(old + n);
   const ParticleView p = store.view();
   const auto kept_log = static_cast<float>(std::log(kept));
   const auto fresh_log = static_cast<float>(std::log((1.0 - kept) / static_cast<double>(n)));
-  const RngStream rng{seed, step, RngPurpose::kRelocalize};
   par::for_each_chunk(old + n, grain, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       if (i < old) {
         p.logw[i] += kept_log;
         continue;
       }
-      p.set_pose(i, free_pose(space, rng, static_cast<std::uint32_t>(i - old)));
+      p.set_pose(i, pose(static_cast<std::uint32_t>(i - old)));
       p.logw[i] = fresh_log;
     }
   });
   (void)normalize(p, grain);
+}
+
+}  // namespace
+
+void append_around(ParticleStore& store, std::size_t n, double kept, const Pose2& center,
+                   double radius, std::uint64_t seed, std::uint64_t step, std::size_t grain) {
+  if (n == 0 || !is_finite(center) || !(radius >= 0.0)) return;
+  const RngStream rng{seed, step, RngPurpose::kLocalSearch};
+  append_weighted(store, n, kept, grain, [&](std::uint32_t i) {
+    const std::array<float, 4> z = rng.normal4(i);
+    const double heading = (2.0 * bits_to_unit(rng.block(i, 1)[0]) - 1.0) * std::numbers::pi;
+    return Pose2{center.x + 0.5 * radius * z[0], center.y + 0.5 * radius * z[1], heading};
+  });
+}
+
+void append_uniform(ParticleStore& store, std::size_t n, double kept, const FreeSpace& space,
+                    std::uint64_t seed, std::uint64_t step, std::size_t grain) {
+  if (n == 0 || space.free_cell_count() == 0) return;
+  const RngStream rng{seed, step, RngPurpose::kRelocalize};
+  append_weighted(store, n, kept, grain, [&](std::uint32_t i) { return free_pose(space, rng, i); });
 }
 
 void initialize_gaussian(ParticleStore& store, std::size_t n, const Pose2& mean,

@@ -5,7 +5,10 @@
 // hard stretch of data made each update cost a global initialization's for hundreds of updates
 // while the filter was not lost at all.
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
+#include "blocked_beams.hpp"
 #include "field_walker.hpp"
 #include "localizer_impl.hpp"
 #include "mote/engine/recovery.hpp"
@@ -37,16 +40,22 @@ bool RelocalizationSchedule::after_update(LocalizationState state, bool focused)
   focused_ = next(focused_, focused);
   lost_ = next(lost_, state == LocalizationState::kLost);
   settled_ = settled_ || tracking || focused_ >= kConvergedAfter;
-  if (tracked_ >= kTrackedToForgive) wait_ = kFirstAfter;
+  if (tracked_ >= kTrackedToForgive) {
+    wait_ = kFirstAfter;
+    trusted_ = true;
+  }
   if (!settled_ || lost_ < wait_) return false;
   lost_ = 0;
   wait_ = std::min(2 * wait_, kLongestWait);
+  local_ = trusted_;
+  trusted_ = false;
   return true;
 }
 
 void Localizer::Impl::reset_relocalization(bool settled) {
   schedule.reset(settled);
   relocalize_due = false;
+  relocalize_locally = false;
   still_scans = 0;
 }
 
@@ -54,6 +63,18 @@ void Localizer::Impl::count_lost_updates() {
   still_scans = 0;
   const bool due = schedule.after_update(stats.state, focused);
   relocalize_due = due && config.relocalize_when_lost;
+  relocalize_locally = relocalize_due && schedule.local();
+}
+
+std::size_t Localizer::Impl::local_count(double radius) const {
+  // The global set's density (global_particles_per_bin) over the KLD bins of the disc and every
+  // heading: a local search is a global one over the part of the map the robot can be in.
+  const double xy_bins =
+      std::numbers::pi * radius * radius / (config.kld_bin_xy * config.kld_bin_xy);
+  const double theta_bins = std::ceil(2.0 * std::numbers::pi / config.kld_bin_theta);
+  const double wanted = std::ceil(config.global_particles_per_bin * xy_bins * theta_bins);
+  return static_cast<std::size_t>(std::clamp(wanted, static_cast<double>(config.min_particles),
+                                             static_cast<double>(global_count())));
 }
 
 bool Localizer::Impl::still_update_due(const LaserScan& scan) {
@@ -89,7 +110,12 @@ void Localizer::Impl::maybe_relocalize() {
   // eighth of max_particles: it holds a hypothesis or a few (the weight it keeps, kKeptWeight,
   // does not depend on its count), where the global set must cover the whole map.
   const auto max_n = static_cast<std::size_t>(config.max_particles);
-  std::size_t fresh = std::min(global_count(), max_n);
+  // Local: within one scan range of the reported pose (held or refined), every heading. Odometry
+  // that missed a turn or slid along a corridor leaves the robot there, and a global set would
+  // offer every look-alike place of the building instead.
+  const double radius = mean_endpoint_range(readings);
+  const bool local = relocalize_locally && radius > 0.0;
+  std::size_t fresh = std::min(local ? local_count(radius) : global_count(), max_n);
   std::size_t kept = store.size();
   if (kept + fresh > max_n) {
     kept = std::min(kept, std::max(max_n - fresh, (max_n + 7) / 8));
@@ -97,9 +123,15 @@ void Localizer::Impl::maybe_relocalize() {
     resample_systematic(store, kept, config.seed, step | kShrinkStream, config.grain);
   }
   const std::size_t before = store.size();
-  append_uniform(store, fresh, kKeptWeight, map, config.seed, step, config.grain);
+  if (local) {
+    append_around(store, fresh, kKeptWeight, estimate.refined.pose, radius, config.seed, step,
+                  config.grain);
+  } else {
+    append_uniform(store, fresh, kKeptWeight, map, config.seed, step, config.grain);
+  }
   stats.relocalized = store.size() - before;
-  monitor.reset();
+  stats.relocalized_locally = local && stats.relocalized > 0;
+  monitor.reset_after_relocalization();
 }
 
 }  // namespace mote

@@ -106,6 +106,26 @@ double ScanMatcher::hit_share(std::span<const Point2> ends, const Pose2& pose) c
   return static_cast<double>(hits) / static_cast<double>(ends.size());
 }
 
+HitDifference ScanMatcher::hit_difference(std::span<const Point2> ends, const Pose2& challenger,
+                                          const Pose2& held) const {
+  const Pose2 gc = between(field_.origin(), challenger);
+  const Pose2 gh = between(field_.origin(), held);
+  const double cc = std::cos(gc.theta);
+  const double sc = std::sin(gc.theta);
+  const double ch = std::cos(gh.theta);
+  const double sh = std::sin(gh.theta);
+  HitDifference d;
+  for (const Point2& e : ends) {
+    const Placed a = place(gc, e, cc, sc);
+    const Placed b = place(gh, e, ch, sh);
+    const bool at_challenger = std::abs(sample(a.x, a.y).distance) <= config_.scale;
+    const bool at_held = std::abs(sample(b.x, b.y).distance) <= config_.scale;
+    d.only_challenger += at_challenger && !at_held ? 1 : 0;
+    d.only_held += at_held && !at_challenger ? 1 : 0;
+  }
+  return d;
+}
+
 double ScanMatcher::correlation_factor(std::span<const Point2> ends, const Pose2& grid_pose) const {
   // Robust residuals sqrt(w) r in scan order: neighbouring readings see the same stretch of
   // wall, drawn a little off or seen through a map's error together, so their residuals are

@@ -131,6 +131,38 @@ TEST_F(StateOnIntel, AWrongStartRelocalizesAndIsNeverTrackingFarOff) {
   EXPECT_GT(found_at, relocalized_at) << "not found within 60 updates";
 }
 
+// Odometry that missed a turn of 80 degrees (the robot turned on the spot, the wheels slipped):
+// the belief's heading is 80 degrees off, the filter goes lost, and its first re-localization, a
+// local search around the reported pose with every heading, finds the robot again without a
+// global set; the reported pose never moves to another place of the building meanwhile.
+TEST_F(StateOnIntel, AMissedTurnIsRecoveredByTheLocalSearch) {
+  Localizer filter(*map_, config());
+  filter.initialize(kIntelStart, start_covariance());
+  test::Drive drive(*map_, kIntelStart, 13);
+  filter.update(drive.odometry, drive.sim.scan_at(drive.truth));
+  for (int k = 0; k < 30; ++k) drive.feed(filter);
+  ASSERT_EQ(filter.last_update().state, LocalizationState::kTracking);
+  drive.truth.theta = wrap_angle(drive.truth.theta + 80.0 * kDeg);  // the odometry misses it
+  int local = 0;
+  int global = 0;
+  int found_at = -1;
+  double farthest = 0.0;
+  for (int k = 0; k < 60 && found_at < 0; ++k) {
+    drive.feed(filter);
+    const UpdateStats& u = filter.last_update();
+    if (u.relocalized > 0) (u.relocalized_locally ? local : global) += 1;
+    const double error = test::position_error(filter.estimate().refined.pose, drive.truth);
+    farthest = std::max(farthest, error);
+    const bool near = error < 0.3 &&
+                      test::heading_error(filter.estimate().refined.pose, drive.truth) < 5.0 * kDeg;
+    if (local > 0 && near && u.state == LocalizationState::kTracking) found_at = k;
+  }
+  EXPECT_GE(local, 1);
+  EXPECT_EQ(global, 0);
+  EXPECT_GE(found_at, 0) << "not found within 60 updates";
+  EXPECT_LT(farthest, 5.0) << "the reported pose left the robot's surroundings";
+}
+
 // Every update judged lost (a bound below any misfit): the filter re-localizes again and
 // again, each time less often, and the hypothesis that explains the scans survives each one.
 TEST_F(StateOnIntel, FalseAlarmsKeepTheHypothesisThatExplainsTheScans) {

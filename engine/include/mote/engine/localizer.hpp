@@ -49,10 +49,13 @@ class RangeTable;
 struct LocalizationEstimate {
   PoseEstimate overall;                ///< the whole particle set
   std::vector<PoseEstimate> clusters;  ///< heaviest first
-  /// The heaviest cluster's mean matched to the map with every valid reading of the last scan
-  /// (scan_match.hpp), where the cluster supports the match (a chi-square gate on their
-  /// covariances, docs/localization-state.md); else the mean itself with a zero covariance. Its
-  /// pose is the mean when the scan had no endpoint.
+  /// The reported pose: the heaviest cluster's mean matched to the map with every valid reading
+  /// of the last scan (scan_match.hpp), where the cluster supports the match (a chi-square gate
+  /// on their covariances, docs/localization-state.md); else the mean itself with a zero
+  /// covariance. Its pose is the mean when the scan had no endpoint. While the heaviest cluster
+  /// lies at another place than the one the filter was tracking and has not yet out-explained
+  /// it over a run of scans, the tracked place instead, carried by the odometry and matched to
+  /// the scan (UpdateStats::held, hypothesis_hold.hpp).
   ScanMatch refined;
   /// The heaviest cluster (amcl reports this one as the robot's pose).
   [[nodiscard]] const PoseEstimate& best() const noexcept {
@@ -97,6 +100,9 @@ struct UpdateStats {
   /// Particles a re-localization added over free space before this update's motion step
   /// (relocalize_when_lost); 0 on every other update.
   std::size_t relocalized = 0;
+  /// Those particles were a local search (within one scan range of the reported pose, every
+  /// heading), not a global set: the first re-localization since the filter last tracked is.
+  bool relocalized_locally = false;
   double tempering = 1.0;    ///< likelihood exponent tau applied to this scan
   int tempering_trials = 0;  ///< ESS evaluations of the adaptive search (0 when fixed)
   /// log sum_i w_prev,i p(z | x_i)^tau over the weighed set: the filter's estimate of the
@@ -123,6 +129,16 @@ struct UpdateStats {
   /// The match converged but lay outside the chi-square gate of the belief (0.999: nominally
   /// one update in a thousand while the belief and the match describe the same pose).
   bool refined_gated = false;
+  /// Places the belief holds a hypothesis at, at the scale of the scan (hypotheses whose
+  /// endpoints would barely overlap count apart); `tracking` needs exactly one.
+  std::size_t places = 0;
+  /// The reported pose (LocalizationEstimate::refined) stayed on the place the filter was
+  /// tracking, matched to this scan there, while a hypothesis at another place was heavier
+  /// (hypothesis_hold.hpp); the state is then `uncertain` at best.
+  bool held = false;
+  /// The heavier hypothesis took the reported pose over at this update: it explained the scans
+  /// better than the held place over a run of scans.
+  bool switched = false;
   double log_w_slow = 0.0;  ///< augmented MCL's averages of the mean likelihood, log domain
   double log_w_fast = 0.0;
   PhaseTimes ms;

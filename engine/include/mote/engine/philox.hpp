@@ -45,13 +45,14 @@ constexpr void philox_round(PhiloxCounter& c, const PhiloxKey& k) noexcept {
 
 /// What a random number is for; part of the counter, so purposes never share a stream.
 enum class RngPurpose : std::uint32_t {
-  kMotion = 1,      ///< motion-model noise
-  kResample = 2,    ///< the resampling uniforms
-  kInjection = 3,   ///< whether recovery replaces a particle
-  kFreePose = 4,    ///< a uniform pose in free space
-  kInitial = 5,     ///< initialization noise
-  kRelocalize = 6,  ///< the free-space poses of a re-localization
-  kUser = 64,       ///< first value free for user code
+  kMotion = 1,       ///< motion-model noise
+  kResample = 2,     ///< the resampling uniforms
+  kInjection = 3,    ///< whether recovery replaces a particle
+  kFreePose = 4,     ///< a uniform pose in free space
+  kInitial = 5,      ///< initialization noise
+  kRelocalize = 6,   ///< the free-space poses of a re-localization
+  kLocalSearch = 7,  ///< the poses of a local search around the belief
+  kUser = 64,        ///< first value free for user code
 };
 
 /// Converts 32 random bits to a float uniform in the open interval (0, 1): 23 bits, centred in

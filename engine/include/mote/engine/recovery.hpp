@@ -78,6 +78,14 @@ std::size_t inject_into_weighted(const ParticleView& particles, double probabili
                                  const FreeSpace& space, std::uint64_t seed, std::uint64_t step,
                                  std::size_t grain = kDefaultGrain);
 
+/// A local search: appends n particles around `center` that carry 1 - kept of the belief, as
+/// append_uniform() does: positions from N(center, radius^2 / 4) in x and y (95 % within
+/// `radius`), headings uniform (a missed turn is any turn), from Philox keyed by seed, step and
+/// RngPurpose::kLocalSearch. log-weights must be normalized; they are again afterwards.
+void append_around(ParticleStore& store, std::size_t n, double kept, const Pose2& center,
+                   double radius, std::uint64_t seed, std::uint64_t step,
+                   std::size_t grain = kDefaultGrain);
+
 /// Re-localization: appends n particles uniform over free space (as initialize_uniform draws
 /// them, from Philox keyed by seed, step and RngPurpose::kRelocalize) that carry 1 - kept of the
 /// belief, while the particles already there keep `kept` of it in their present proportions.

@@ -43,6 +43,12 @@ class RelocalizationSchedule {
   [[nodiscard]] bool settled() const noexcept { return settled_; }
   /// Lost updates in a row that the next re-localization waits for.
   [[nodiscard]] std::uint64_t wait() const noexcept { return wait_; }
+  /// Whether the re-localization after_update() just called for searches around the belief:
+  /// the first one after a stretch of kTrackedToForgive tracking updates (a belief that was
+  /// right a moment ago; odometry that missed a turn leaves the robot near it). The ones after
+  /// it, and any before the filter has tracked that long (a global start that settled at the
+  /// wrong place, a wrong start pose), search the whole map.
+  [[nodiscard]] bool local() const noexcept { return local_; }
 
  private:
   // Counters saturate rather than wrap on a run of years.
@@ -55,6 +61,8 @@ class RelocalizationSchedule {
   std::uint64_t focused_ = 0;  // focused updates in a row
   std::uint64_t wait_ = kFirstAfter;
   bool settled_ = false;
+  bool trusted_ = false;  // tracked kTrackedToForgive in a row since the last re-localization
+  bool local_ = false;
 };
 
 }  // namespace mote

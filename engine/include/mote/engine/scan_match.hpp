@@ -19,6 +19,7 @@
 #include <span>
 
 #include "mote/core/pose.hpp"
+#include "mote/engine/hypothesis_hold.hpp"
 #include "mote/maps/signed_distance_field.hpp"
 
 namespace mote {
@@ -78,6 +79,10 @@ class ScanMatcher {
 
   /// Share of `ends`, seen from `pose`, within `scale` of an obstacle's surface (no refinement).
   [[nodiscard]] double hit_share(std::span<const Point2> ends, const Pose2& pose) const;
+  /// The readings of `ends` that hit (as in hit_share) from `challenger` but not from `held`,
+  /// and the other way round.
+  [[nodiscard]] HitDifference hit_difference(std::span<const Point2> ends, const Pose2& challenger,
+                                             const Pose2& held) const;
 
   [[nodiscard]] const ScanMatchConfig& config() const noexcept { return config_; }
 
