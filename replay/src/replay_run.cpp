@@ -63,6 +63,9 @@ void record_update(ReplayResult& result, const Localizer& filter, double stamp,
                             .hit_share = stats.hit_share,
                             .see_through = stats.see_through,
                             .misfit = stats.misfit,
+                            .places = stats.places,
+                            .held = stats.held,
+                            .switched = stats.switched,
                             .refined = filter.estimate().refined.pose,
                             .odometry = odometry});
 }

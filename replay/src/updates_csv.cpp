@@ -26,7 +26,9 @@ void write_updates_csv(const std::filesystem::path& file, const ReplayResult& re
   std::ofstream out(file);
   out << "stamp,particles,weighed,beams,blocked_beams,ess,tempering,log_evidence,"
          "injected,relocalized,resampled,alpha1,alpha2,alpha3,alpha4,total_ms,state,hit_share,"
-         "see_through,misfit,refined_x,refined_y,refined_theta,mean_x,mean_y,mean_theta\n";
+         "see_through,misfit,refined_x,refined_y,refined_theta,mean_x,mean_y,mean_theta,places,"
+         "held,"
+         "switched\n";
   out.precision(10);
   for (std::size_t k = 0; k < result.updates.size(); ++k) {
     const UpdateRecord& u = result.updates[k];
@@ -41,7 +43,8 @@ void write_updates_csv(const std::filesystem::path& file, const ReplayResult& re
         << u.alphas.alpha3 << ',' << u.alphas.alpha4 << ',' << u.ms.total << ',' << name_of(u.state)
         << ',' << u.hit_share << ',' << u.see_through << ',' << u.misfit << ',' << u.refined.x
         << ',' << u.refined.y << ',' << u.refined.theta << ',' << mean.x << ',' << mean.y << ','
-        << mean.theta << '\n';
+        << mean.theta << ',' << u.places << ',' << (u.held ? 1 : 0) << ',' << (u.switched ? 1 : 0)
+        << '\n';
   }
   if (!out.good()) throw Error(file.string() + ": cannot write");
 }

@@ -74,8 +74,11 @@ struct UpdateRecord {
   double hit_share = 0.0;                                   ///< UpdateStats::hit_share
   double see_through = 0.0;                                 ///< UpdateStats::see_through
   double misfit = 0.0;                                      ///< UpdateStats::misfit
-  Pose2 refined;   ///< the best hypothesis matched to the map
-  Pose2 odometry;  ///< the scan's odometry pose (odom frame)
+  std::size_t places = 0;                                   ///< UpdateStats::places
+  bool held = false;      ///< UpdateStats::held: the reported pose stayed on the tracked place
+  bool switched = false;  ///< UpdateStats::switched: another place took the reported pose over
+  Pose2 refined;          ///< the reported pose (LocalizationEstimate::refined)
+  Pose2 odometry;         ///< the scan's odometry pose (odom frame)
 };
 
 /// How a run recovered from a kidnapping (ReplayOptions::kidnapped_at).
