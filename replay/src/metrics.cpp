@@ -114,6 +114,22 @@ TrajectoryErrors compare_trajectories(std::span<const logs::StampedPose> estimat
   return out;
 }
 
+OffUpdates count_off_updates(std::span<const logs::StampedPose> estimate,
+                             std::span<const LocalizationState> states,
+                             std::span<const logs::StampedPose> sorted_reference, double bound_m,
+                             double tolerance) {
+  OffUpdates out;
+  for (std::size_t k = 0; k < estimate.size(); ++k) {
+    const logs::StampedPose& e = estimate[k];
+    const auto ref = logs::match_reference(sorted_reference, e.stamp, tolerance);
+    if (!ref || !(std::hypot(e.pose.x - ref->pose.x, e.pose.y - ref->pose.y) > bound_m)) continue;
+    ++out.off;
+    const bool tracking = k >= states.size() || states[k] == LocalizationState::kTracking;
+    out.flagged += tracking ? 0U : 1U;
+  }
+  return out;
+}
+
 std::optional<std::size_t> recovery_updates(std::span<const logs::StampedPose> estimate,
                                             std::span<const logs::StampedPose> sorted_reference,
                                             double kidnap_stamp, double within_m, std::size_t hold,

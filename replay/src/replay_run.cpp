@@ -174,6 +174,11 @@ ReplayResult run_replay(const ReplayOptions& options) {
     check_reference_matches(options, result, sorted_reference);
     result.particle_errors =
         compare_trajectories(result.particle_trajectory, sorted_reference, metrics);
+    std::vector<LocalizationState> states;
+    states.reserve(result.updates.size());
+    for (const UpdateRecord& u : result.updates) states.push_back(u.state);
+    result.off_updates = count_off_updates(result.trajectory, states, sorted_reference, kOffUpdateM,
+                                           metrics.match_tolerance_s);
     if (options.kidnapped_at) result.kidnap = kidnap_recovery(result, options, sorted_reference);
   }
   return result;

@@ -138,6 +138,14 @@ void write_errors(JsonWriter& json, const ReplayResult& r) {
   json.member("heading_rmse_deg", r.errors->heading_rmse_deg);
   json.member("max_error_m", r.errors->max_error_m);
   json.member("converged_at_s", r.errors->converged_at_s);
+  // Updates more than 1 m off the reference, and of those the ones the state flagged
+  // (uncertain or lost) and the ones it did not (tracking): issue 47's target is none of these.
+  static_assert(kOffUpdateM == 1.0, "the keys and the summary row name the bound");
+  if (r.off_updates) {
+    json.member("updates_over_1m", std::uint64_t{r.off_updates->off});
+    json.member("updates_over_1m_flagged", std::uint64_t{r.off_updates->flagged});
+    json.member("updates_over_1m_tracking", std::uint64_t{r.off_updates->tracking()});
+  }
   if (r.particle_errors) {
     json.key("particle_mean").begin_object();
     json.member("ate_rmse_m", r.particle_errors->ate_rmse_m);
@@ -395,6 +403,15 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "heading RMSE",
       after(
           e.heading_rmse_deg, [](const auto& a) { return a.heading_rmse_deg; }, 3, " deg"));
+  if (result.off_updates) {
+    const OffUpdates& o = *result.off_updates;
+    std::string text = std::to_string(o.off);
+    if (o.off > 0) {
+      text.append(" (").append(std::to_string(o.flagged)).append(" flagged uncertain or lost, ");
+      text.append(std::to_string(o.tracking())).append(" while tracking)");
+    }
+    row(out, "updates > 1 m off", text);
+  }
   if (!result.kidnap) return;
   const KidnapRecovery& k = *result.kidnap;
   row(out, "kidnapped at",

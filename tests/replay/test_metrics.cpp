@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include "mote/replay/metrics.hpp"
@@ -167,6 +168,36 @@ TEST(Metrics, RecoveryThatLeavesAndComesBackCountsFromTheLastReturn) {
   est[20].stamp += 0.5;
   est[20].pose.x += 9.0;
   EXPECT_EQ(recovery_updates(est, ref, 110.0), std::optional<std::size_t>(5));
+}
+
+// Off updates on a 1 s trajectory: which are more than 1 m off and which of them were flagged.
+TEST(Metrics, OffUpdatesCountThoseMoreThanABoundOffAndTheFlaggedAmongThem) {
+  using enum LocalizationState;
+  const auto ref = straight_line(12, 1.0);
+  auto est = ref;
+  std::vector<LocalizationState> states(est.size(), kTracking);
+  est[1].pose.y += 1.0;   // exactly at the bound: not off
+  est[3].pose.y -= 1.01;  // off while tracking
+  est[4].pose.x += 5.0;   // off, uncertain
+  states[4] = kUncertain;
+  est[5].pose.x -= 30.0;  // off, lost
+  states[5] = kLost;
+  est[6].pose.x += 0.4;  // near and lost: flagged but not off, so not counted
+  states[6] = kLost;
+  est[7].stamp += 0.5;  // unmatched (no reference within 0.05 s): not counted
+  est[7].pose.x += 9.0;
+  est[8].pose.y += 2.0;  // off while tracking
+  const OffUpdates o = count_off_updates(est, states, ref);
+  EXPECT_EQ(o.off, 4U);
+  EXPECT_EQ(o.flagged, 2U);
+  EXPECT_EQ(o.tracking(), 2U);
+  // Zero exactly when the max error is within the bound.
+  EXPECT_GT(compare_trajectories(est, ref).max_error_m, kOffUpdateM);
+  EXPECT_EQ(count_off_updates(ref, states, ref).off, 0U);
+  // A tighter bound counts more; an estimate without a state counts as tracking.
+  const OffUpdates tight = count_off_updates(est, std::span(states).first(5), ref, 0.5);
+  EXPECT_EQ(tight.off, 5U);      // 1, 3, 4, 5, 8
+  EXPECT_EQ(tight.flagged, 1U);  // only 4: 5's state is past the span
 }
 
 TEST(Metrics, PercentilesUseNearestRank) {

@@ -174,6 +174,27 @@ TEST(Report, HasTheRequiredKeysAndFigures) {
   EXPECT_NEAR(f.particle_beams_per_s, 120000.0 / 17e-3, 1e-3);
 }
 
+TEST(Report, CountsTheUpdatesMoreThanOneMetreOffAndTheFlaggedAmongThem) {
+  ReplayResult r = fake_result(true);
+  r.off_updates = OffUpdates{.off = 5, .flagged = 3};
+  std::ostringstream out;
+  write_report_json(out, r);
+  ASSERT_TRUE(JsonCheck(out.str()).valid()) << out.str();
+  EXPECT_NE(out.str().find("\"updates_over_1m\": 5"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("\"updates_over_1m_flagged\": 3"), std::string::npos);
+  EXPECT_NE(out.str().find("\"updates_over_1m_tracking\": 2"), std::string::npos);
+  std::ostringstream summary;
+  print_summary(summary, r);
+  EXPECT_NE(summary.str().find("updates > 1 m off"), std::string::npos) << summary.str();
+  EXPECT_NE(summary.str().find(" 5 (3 flagged uncertain or lost, 2 while tracking)\n"),
+            std::string::npos)
+      << summary.str();
+  r.off_updates = OffUpdates{};
+  std::ostringstream none;
+  print_summary(none, r);
+  EXPECT_NE(none.str().find("updates > 1 m off     0\n"), std::string::npos) << none.str();
+}
+
 TEST(Report, WithoutReferenceHasNoAccuracyKeys) {
   std::ostringstream out;
   write_report_json(out, fake_result(false));

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "mote/engine/localization_state.hpp"
 #include "mote/logs/tum.hpp"
 
 namespace mote::replay {
@@ -57,6 +58,30 @@ struct TrajectoryErrors {
 [[nodiscard]] TrajectoryErrors compare_trajectories(std::span<const logs::StampedPose> estimate,
                                                     std::span<const logs::StampedPose> reference,
                                                     const MetricOptions& options = {});
+
+/// m: an update whose reported pose lies farther than this from the reference pose is off. The
+/// issue-47 target (no update this far off while the state says tracking) and the bound the
+/// accuracy table calls a lost run (scripts/accuracy-table); report.json's updates_over_1m.
+inline constexpr double kOffUpdateM = 1.0;
+
+/// The updates whose estimate was off, and whether the filter told the user.
+struct OffUpdates {
+  std::size_t off = 0;      ///< matched estimates more than the bound from the reference
+  std::size_t flagged = 0;  ///< of those, the ones whose state was not `tracking`
+  /// Off while the state said `tracking`: wrong and not flagged, what a planner would act on.
+  [[nodiscard]] std::size_t tracking() const noexcept { return off - flagged; }
+};
+
+/// Counts the estimates (in run order, `states` one per estimate) farther than `bound_m` from the
+/// reference pose nearest in time within `tolerance` s, as compare_trajectories pairs them (so
+/// `off` is 0 exactly when its max_error_m is at most `bound_m`), and those among them whose
+/// state was `uncertain` or `lost`. Unmatched estimates do not count; an estimate without a
+/// state counts as `tracking`. `sorted_reference` must be sorted by stamp (sort_by_stamp).
+[[nodiscard]] OffUpdates count_off_updates(std::span<const logs::StampedPose> estimate,
+                                           std::span<const LocalizationState> states,
+                                           std::span<const logs::StampedPose> sorted_reference,
+                                           double bound_m = kOffUpdateM,
+                                           double tolerance = logs::kReferenceMatchTolerance);
 
 /// Filter updates it took to recover from a kidnapping at `kidnap_stamp` (s): among the estimates
 /// stamped at or after it (in run order), the number that come before the first of `hold`

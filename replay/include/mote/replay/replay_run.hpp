@@ -124,10 +124,11 @@ struct ReplayResult {
   std::vector<logs::StampedPose> reference;         ///< the reference trajectory (may be empty)
   std::optional<TrajectoryErrors> errors;           ///< with a reference
   std::optional<TrajectoryErrors> particle_errors;  ///< of particle_trajectory, with a reference
-  std::optional<KidnapRecovery> kidnap;             ///< with a reference and kidnapped_at
-  std::vector<Pose2> final_particles;               ///< the particle cloud after the last scan
-  double wall_s = 0.0;                              ///< s, wall-clock time of the whole loop
-  double read_s = 0.0;                           ///< s of wall_s spent in the log reader's next()
+  std::optional<OffUpdates> off_updates;  ///< updates more than kOffUpdateM off, with a reference
+  std::optional<KidnapRecovery> kidnap;   ///< with a reference and kidnapped_at
+  std::vector<Pose2> final_particles;     ///< the particle cloud after the last scan
+  double wall_s = 0.0;                    ///< s, wall-clock time of the whole loop
+  double read_s = 0.0;                    ///< s of wall_s spent in the log reader's next()
   std::optional<RangeTableSummary> range_table;  ///< the beam model's table (ray_casting: table)
 };
 

@@ -37,8 +37,9 @@ struct ReportOptions {
 /// Writes report.json's content: updates, scans, threads, isa, isa_detail, model, particles_mean,
 /// update_ms {mean,p50,p99,max}, phase_ms, particle_beams_per_s, laser_max_range {m, source,
 /// effective_m (after the config's laser_max_range)}, outcomes, reader stats, and with a
-/// reference ate_rmse_m, heading_rmse_deg and converged_at_s (null when never or undefined),
-/// and after a kidnapping "kidnap" {at, updates_after, within_m, hold, recovered,
+/// reference ate_rmse_m, heading_rmse_deg, converged_at_s (null when never or undefined) and
+/// updates_over_1m, updates_over_1m_flagged, updates_over_1m_tracking (count_off_updates), and
+/// after a kidnapping "kidnap" {at, updates_after, within_m, hold, recovered,
 /// recovered_after_updates (null when not recovered)}.
 void write_report_json(std::ostream& out, const ReplayResult& result,
                        const ReportOptions& options = {});
