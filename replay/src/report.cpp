@@ -100,11 +100,17 @@ void write_states(JsonWriter& json, const ReplayResult& r) {
   std::array<std::size_t, 3> all{};
   std::array<std::size_t, 3> after{};
   std::size_t relocalizations = 0;
+  std::size_t local = 0;
+  std::size_t held = 0;
+  std::size_t switched = 0;
   for (const UpdateRecord& u : r.updates) {
     const auto k = static_cast<std::size_t>(u.state);
     ++all[k];
     if (u.stamp >= from) ++after[k];
     relocalizations += u.relocalized > 0 ? 1 : 0;
+    local += u.relocalized > 0 && u.relocalized_locally ? 1 : 0;
+    held += u.held ? 1 : 0;
+    switched += u.switched ? 1 : 0;
   }
   const auto shares = [&](const char* name, const std::array<std::size_t, 3>& n) {
     const std::size_t total = n[0] + n[1] + n[2];
@@ -121,7 +127,10 @@ void write_states(JsonWriter& json, const ReplayResult& r) {
   shares("share", all);
   if (std::isfinite(from)) shares("share_after_convergence", after);
   json.member("relocalizations", std::uint64_t{relocalizations});
+  json.member("relocalizations_local", std::uint64_t{local});
   write_moves(json, r, relocalization_moves(r.updates));
+  json.member("updates_held", std::uint64_t{held});
+  json.member("held_place_handed_over", std::uint64_t{switched});
   json.end_object();
   json.key("global_set").begin_object();
   json.member("particles", std::uint64_t{r.global_set.particles});
@@ -335,9 +344,11 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
 std::string state_text(const ReplayResult& r) {
   std::array<std::size_t, 3> n{};
   std::size_t relocalizations = 0;
+  std::size_t held = 0;
   for (const UpdateRecord& u : r.updates) {
     ++n[static_cast<std::size_t>(u.state)];
     relocalizations += u.relocalized > 0 ? 1 : 0;
+    held += u.held ? 1 : 0;
   }
   const double total = std::max<double>(1.0, static_cast<double>(r.updates.size()));
   const auto pct = [&](LocalizationState s) {
@@ -348,6 +359,9 @@ std::string state_text(const ReplayResult& r) {
                      pct(LocalizationState::kUncertain) + " / " + pct(LocalizationState::kLost);
   if (!r.updates.empty()) text += std::string(", ends ") + name_of(r.updates.back().state);
   text.append(", ").append(std::to_string(relocalizations)).append(" re-localizations");
+  if (held > 0) {
+    text.append(", the tracked place held on ").append(std::to_string(held)).append(" updates");
+  }
   if (relocalizations == 0) return text;
   const RelocalizationMoves moves = relocalization_moves(r.updates);
   text.append(" (").append(std::to_string(moves.moved)).append(" moved the pose more than ");

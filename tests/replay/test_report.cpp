@@ -195,6 +195,29 @@ TEST(Report, CountsTheUpdatesMoreThanOneMetreOffAndTheFlaggedAmongThem) {
   EXPECT_NE(none.str().find("updates > 1 m off     0\n"), std::string::npos) << none.str();
 }
 
+TEST(Report, CountsTheHeldUpdatesTheHandOversAndTheLocalSearches) {
+  ReplayResult r = fake_result(false);
+  r.updates[0].relocalized = 400;
+  r.updates[0].relocalized_locally = true;
+  r.updates[0].held = true;
+  r.updates[1].held = true;
+  r.updates[1].switched = false;
+  std::ostringstream out;
+  write_report_json(out, r);
+  ASSERT_TRUE(JsonCheck(out.str()).valid()) << out.str();
+  EXPECT_NE(out.str().find("\"relocalizations_local\": 1"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("\"updates_held\": 2"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("\"held_place_handed_over\": 0"), std::string::npos) << out.str();
+  std::ostringstream summary;
+  print_summary(summary, r);
+  EXPECT_NE(summary.str().find("the tracked place held on 2 updates"), std::string::npos)
+      << summary.str();
+  r.updates[0].held = r.updates[1].held = false;
+  std::ostringstream none;
+  print_summary(none, r);
+  EXPECT_EQ(none.str().find("held on"), std::string::npos) << none.str();
+}
+
 TEST(Report, WithoutReferenceHasNoAccuracyKeys) {
   std::ostringstream out;
   write_report_json(out, fake_result(false));

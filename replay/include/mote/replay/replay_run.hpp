@@ -68,6 +68,7 @@ struct UpdateRecord {
   double log_evidence = 0.0;           ///< UpdateStats::log_evidence, nats
   std::size_t injected = 0;            ///< augmented MCL's particles (amcl's rule)
   std::size_t relocalized = 0;         ///< particles a re-localization added
+  bool relocalized_locally = false;    ///< ... by a local search (UpdateStats)
   bool resampled = false;
   OdometryAlphas alphas;  ///< odometry noise in use after the update
   LocalizationState state = LocalizationState::kUncertain;  ///< UpdateStats::state
