@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "field_walker.hpp"
 #include "mote/core/parallel.hpp"
@@ -135,7 +136,8 @@ BlockedBeamFilter::Places BlockedBeamFilter::places_on(const BeamSet& beams,
     });
     if (!known) anchors.push_back(c.mean);
   }
-  return {.count = anchors.size(), .one = anchors.size() == 1 && focused(clusters, range, range)};
+  const bool one = anchors.size() == 1 && focused(clusters, range, range);
+  return {.count = anchors.size(), .one = one, .anchors = std::move(anchors)};
 }
 
 bool BlockedBeamFilter::focused_on(const BeamSet& beams, const MapField& map,

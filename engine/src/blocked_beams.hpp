@@ -92,6 +92,7 @@ class BlockedBeamFilter {
   struct Places {
     std::size_t count = 0;
     bool one = false;
+    std::vector<Pose2> anchors;  // each place's heaviest hypothesis (count of them)
   };
   [[nodiscard]] static Places places_on(const BeamSet& beams,
                                         const std::vector<PoseEstimate>& clusters);

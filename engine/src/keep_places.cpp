@@ -59,8 +59,7 @@ void Localizer::Impl::keep_places(const Pose2& odometry) {
   // hypothesis (McNemar's z between them not below -HypothesisHold::kZ).
   const Pose2 moved = between(last_odometry, odometry);
   const double range = mean_endpoint_range(readings);
-  std::vector<Pose2> before;
-  before.swap(place_anchors);
+  const std::vector<Pose2>& before = place_anchors;
   // Not before the belief has settled on tight hypotheses (as the hold): a global search's
   // clusters come and go with every scan, and holding them up at a tenth each kept Wean's
   // look-alike corridors in the belief until one of them won.
@@ -87,20 +86,6 @@ void Localizer::Impl::keep_places(const Pose2& odometry) {
     changed = keep_place(c) || changed;
   }
   if (changed) update_estimate();
-}
-
-void Localizer::Impl::remember_places() {
-  // The anchors of the places the belief holds now (heaviest cluster of each, clusters of
-  // kPlaceFloor or more), for the next update's keep_places().
-  const double range = mean_endpoint_range(readings);
-  place_anchors.clear();
-  for (const PoseEstimate& c : estimate.clusters) {
-    if (c.weight < kPlaceFloor) continue;
-    const bool known = std::any_of(place_anchors.begin(), place_anchors.end(), [&](const Pose2& a) {
-      return !HypothesisHold::other_place(a, c.mean, range);
-    });
-    if (!known) place_anchors.push_back(c.mean);
-  }
 }
 
 }  // namespace mote

@@ -154,7 +154,6 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
         keep_places(odometry);
         judge_focus();
         judge_localization();
-        remember_places();
       });
     });
   } catch (...) {

@@ -83,10 +83,9 @@ struct Localizer::Impl {
   // After update_estimate() (keep_places.cpp): a place of the previous update whose cluster
   // fell below a tenth of the belief while this scan fits it as well as the best hypothesis
   // is raised back to a tenth (keep_place), so that look-alike places are not resampled away
-  // by the luck of a few hundred particles; remember_places() notes the places for the next.
+  // by the luck of a few hundred particles (the places are judge_focus()'s place_anchors).
   void keep_places(const Pose2& odometry);
   bool keep_place(const PoseEstimate& place);
-  void remember_places();
 
   // Initialization (localizer.cpp): forget everything but the map and the config.
   void start_fresh(bool settled);                  // settled: around a given pose, not a global set
@@ -138,7 +137,7 @@ struct Localizer::Impl {
   // test of one hypothesis at one place, which a cloud widened by tempering still passes.
   bool one_place = false;
   std::size_t belief_places = 0;     // places_on()'s count, for the next update's resampling
-  std::vector<Pose2> place_anchors;  // the places after the last update (remember_places)
+  std::vector<Pose2> place_anchors;  // places_on()'s anchors, for keep_places and the filter
   bool focus_judged = false;         // false between initialization and the first judge_focus()
   // Running geometric mean of ScanMatch::correlation over the matches taken while tracking
   // (learn_correlation), by which the next match's covariance is inflated; 0 until the first,

@@ -374,6 +374,7 @@ void Localizer::Impl::judge_focus() {
         BlockedBeamFilter::places_on(readings, estimate.clusters);
     one_place = places.one;
     belief_places = places.count;
+    place_anchors = places.anchors;
   }
   stats.places = belief_places;
   focus_judged = true;
