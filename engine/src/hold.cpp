@@ -33,7 +33,9 @@ void Localizer::Impl::hold_reported_place(const Pose2& odometry) {
   const ScanMatch there = matcher->match(endpoints, carried, correlation);
   const Pose2 at = there.converged ? there.pose : carried;
   if (!hold.active()) hold.challenge();
-  const HitDifference difference = matcher->hit_difference(endpoints, reported, at);
+  // The challenger at its best fit too, where the gate refused its match.
+  const Pose2 challenger = stats.refined_matched ? reported : fitted(reported);
+  const HitDifference difference = matcher->hit_difference(endpoints, challenger, at);
   const double travelled = std::hypot(moved.x, moved.y) + std::abs(moved.theta) * range;
   if (hold.after_scan(difference, correlation, travelled, range)) {
     hold.end();

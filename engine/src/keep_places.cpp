@@ -3,12 +3,12 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include "blocked_beams.hpp"
 #include "localizer_impl.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/engine/weights.hpp"
+#include "weight_sums.hpp"
 
 namespace mote {
 namespace {
@@ -20,23 +20,38 @@ constexpr double kPlaceFloor = 1.0 - BlockedBeamFilter::kFocusedWeight;
 // 0.999 quantile of chi-square with 3 degrees of freedom.
 constexpr double kMemberGate = 16.27;
 
-// Whether pose p lies within the cluster's gate.
-bool member(const PoseEstimate& c, const Eigen::Matrix3d& inverse, const Pose2& p) {
-  const Eigen::Vector3d d(p.x - c.mean.x, p.y - c.mean.y, wrap_angle(p.theta - c.mean.theta));
-  return d.dot(inverse * d) <= kMemberGate;
-}
+// The gate of a cluster: its mean and the inverse of its covariance, as plain numbers (the
+// weight sums run in kernels compiled per instruction set).
+struct Gate {
+  double x, y, theta;
+  double a, b, c, d, e, f;  // inverse covariance: [a b c; b d e; c e f]
+
+  explicit Gate(const PoseEstimate& cluster)
+      : x(cluster.mean.x), y(cluster.mean.y), theta(cluster.mean.theta) {
+    Eigen::Matrix3d cov = cluster.covariance;
+    cov.diagonal().array() += 1e-6;  // a cluster of identical particles
+    const Eigen::Matrix3d inv = cov.ldlt().solve(Eigen::Matrix3d::Identity());
+    a = inv(0, 0), b = inv(0, 1), c = inv(0, 2), d = inv(1, 1), e = inv(1, 2), f = inv(2, 2);
+  }
+  [[nodiscard]] bool contains(const Pose2& p) const noexcept {
+    const double u = p.x - x;
+    const double v = p.y - y;
+    const double w = wrap_angle(p.theta - theta);
+    const double q = a * u * u + d * v * v + f * w * w + 2.0 * (b * u * v + c * u * w + e * v * w);
+    return q <= kMemberGate;
+  }
+};
 
 }  // namespace
 
 bool Localizer::Impl::keep_place(const PoseEstimate& place) {
-  Eigen::Matrix3d cov = place.covariance;
-  cov.diagonal().array() += 1e-6;  // a cluster of identical particles
-  const Eigen::Matrix3d inverse = cov.ldlt().solve(Eigen::Matrix3d::Identity());
+  const Gate gate(place);
   const ParticleView p = store.view();
-  double inside = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (member(place, inverse, p.pose(i))) inside += std::exp(static_cast<double>(p.logw[i]));
-  }
+  // The place's weight, summed in fixed blocks: the same for any thread count and grain.
+  const auto inside_logw = [p, gate](std::size_t i) {
+    return gate.contains(p.pose(i)) ? p.logw[i] : detail::kNegInfF;
+  };
+  const double inside = detail::sum_weights(p.size(), 0.0F, inside_logw).w;
   if (!(inside > 0.0) || inside >= kPlaceFloor) return false;
   // Raise the place to the floor and scale the rest down: the weights stay normalized, and
   // within each part their ratios stay what the scans made them. A thousandth above the floor,
@@ -46,46 +61,53 @@ bool Localizer::Impl::keep_place(const PoseEstimate& place) {
   const auto raise = static_cast<float>(std::log(target / inside));
   const auto lower = static_cast<float>(std::log((1.0 - target) / (1.0 - inside)));
   par::for_each_chunk(p.size(), config.grain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      p.logw[i] += member(place, inverse, p.pose(i)) ? raise : lower;
-    }
+    for (std::size_t i = begin; i < end; ++i) p.logw[i] += gate.contains(p.pose(i)) ? raise : lower;
   });
   return true;
 }
 
 void Localizer::Impl::keep_places(const Pose2& odometry) {
-  // The places of the previous update, carried by the odometry: a cluster at one of them that
-  // fell below the floor is kept at it as long as this scan fits it as well as the best
-  // hypothesis (McNemar's z between them not below -HypothesisHold::kZ).
-  const Pose2 moved = between(last_odometry, odometry);
-  const double range = mean_endpoint_range(readings);
-  const std::vector<Pose2>& before = place_anchors;
+  // The places of the previous update, carried by the odometry: the heaviest cluster at one of
+  // them that fell below the floor (no cluster there holds it any more) is raised back to it,
+  // as long as this scan fits it as well as the best hypothesis (McNemar's z between them not
+  // below -HypothesisHold::kZ). One place per update: raising one lowers every other, and two
+  // raises in one update undid each other.
   // Not before the belief has settled on tight hypotheses (as the hold): a global search's
   // clusters come and go with every scan, and holding them up at a tenth each kept Wean's
   // look-alike corridors in the belief until one of them won.
   if (!has_held || estimate.clusters.size() < 2 || endpoints.empty()) return;
+  const Pose2 moved = between(last_odometry, odometry);
+  const double range = mean_endpoint_range(readings);
   const PoseEstimate& best = estimate.clusters.front();
-  // Each compared at its best fit to the scan: a cloud's mean lies a few centimetres and a
-  // degree or two off, and at the hit band that alone loses dozens of readings.
-  const auto fitted = [&](const Pose2& start) {
-    const ScanMatch m = matcher->match(endpoints, start, correlation);
-    return m.converged ? m.pose : start;
+  const auto at = [&](const Pose2& place, const Pose2& pose) {
+    return !HypothesisHold::other_place(place, pose, range);
   };
-  std::optional<Pose2> best_fit;
-  bool changed = false;
-  for (const PoseEstimate& c : estimate.clusters) {
-    if (c.weight >= kPlaceFloor || !(c.weight > 0.0)) continue;
-    if (!HypothesisHold::other_place(best.mean, c.mean, range)) continue;
-    const bool known = std::any_of(before.begin(), before.end(), [&](const Pose2& a) {
-      return !HypothesisHold::other_place(compose(a, moved), c.mean, range);
-    });
-    if (!known) continue;
-    if (!best_fit) best_fit = fitted(best.mean);
-    const HitDifference d = matcher->hit_difference(endpoints, fitted(c.mean), *best_fit);
-    if (HypothesisHold::z(d, correlation) < -HypothesisHold::kZ) continue;
-    changed = keep_place(c) || changed;
+  for (const Pose2& anchor : place_anchors) {
+    const Pose2 place = compose(anchor, moved);
+    if (at(place, best.mean)) continue;
+    const auto here = [&](const PoseEstimate& c) { return at(place, c.mean); };
+    const auto held_up =
+        std::find_if(estimate.clusters.begin(), estimate.clusters.end(),
+                     [&](const PoseEstimate& c) { return here(c) && c.weight >= kPlaceFloor; });
+    const auto fallen =
+        std::find_if(estimate.clusters.begin(), estimate.clusters.end(),
+                     [&](const PoseEstimate& c) { return here(c) && c.weight > 0.0; });
+    if (held_up != estimate.clusters.end() || fallen == estimate.clusters.end()) continue;
+    if (HypothesisHold::z(
+            matcher->hit_difference(endpoints, fitted(fallen->mean), fitted(best.mean)),
+            correlation) < -HypothesisHold::kZ) {
+      continue;
+    }
+    if (keep_place(*fallen)) update_estimate();
+    return;
   }
-  if (changed) update_estimate();
+}
+
+Pose2 Localizer::Impl::fitted(const Pose2& start) const {
+  // A cloud's mean lies a few centimetres and a degree or two off, and at the hit band that
+  // alone loses dozens of readings: places are compared at their best fit to the scan.
+  const ScanMatch m = matcher->match(endpoints, start, correlation);
+  return m.converged ? m.pose : start;
 }
 
 }  // namespace mote

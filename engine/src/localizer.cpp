@@ -158,6 +158,7 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
     });
   } catch (...) {
     if (moved) {
+      if (has_held) held = compose(held, between(last_odometry, odometry));  // carried as well
       last_odometry = odometry;
       last_fix = {};  // no residual across the failed update
       ++step;

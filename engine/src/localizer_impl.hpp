@@ -86,6 +86,8 @@ struct Localizer::Impl {
   // by the luck of a few hundred particles (the places are judge_focus()'s place_anchors).
   void keep_places(const Pose2& odometry);
   bool keep_place(const PoseEstimate& place);
+  // The scan matched from `start` (the start itself when the match does not converge).
+  [[nodiscard]] Pose2 fitted(const Pose2& start) const;
 
   // Initialization (localizer.cpp): forget everything but the map and the config.
   void start_fresh(bool settled);                  // settled: around a given pose, not a global set

@@ -330,8 +330,9 @@ void Localizer::Impl::adapt_motion_noise(const Pose2& odometry) {
   // a lost stretch (the fix is somewhere else), nor from a fix the scan could not constrain.
   const ScanMatch& now = estimate.refined;
   const bool usable = has_odometry && stats.outcome == UpdateOutcome::kUpdated &&
-                      stats.injected == 0 && stats.relocalized == 0 && !beams.empty() &&
-                      stats.state != LocalizationState::kLost && fixed(now) && fixed(last_fix);
+                      stats.injected == 0 && stats.relocalized == 0 && !stats.switched &&
+                      !beams.empty() && stats.state != LocalizationState::kLost && fixed(now) &&
+                      fixed(last_fix);
   if (usable) {
     const FixUncertainty fix{.rotation = last_fix.covariance(2, 2) + now.covariance(2, 2),
                              .translation = last_fix.covariance.topLeftCorner<2, 2>().trace() +

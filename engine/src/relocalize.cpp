@@ -72,6 +72,7 @@ std::size_t Localizer::Impl::local_count(double radius) const {
   const double xy_bins =
       std::numbers::pi * radius * radius / (config.kld_bin_xy * config.kld_bin_xy);
   const double theta_bins = std::ceil(2.0 * std::numbers::pi / config.kld_bin_theta);
+  if (config.global_particles_per_bin <= 0.0) return global_count();  // max_particles, as global
   const double wanted = std::ceil(config.global_particles_per_bin * xy_bins * theta_bins);
   return static_cast<std::size_t>(std::clamp(wanted, static_cast<double>(config.min_particles),
                                              static_cast<double>(global_count())));
@@ -114,7 +115,7 @@ void Localizer::Impl::maybe_relocalize() {
   // that missed a turn or slid along a corridor leaves the robot there, and a global set would
   // offer every look-alike place of the building instead.
   const double radius = mean_endpoint_range(readings);
-  const bool local = relocalize_locally && radius > 0.0;
+  const bool local = relocalize_locally && radius > 0.0 && is_finite(estimate.refined.pose);
   std::size_t fresh = std::min(local ? local_count(radius) : global_count(), max_n);
   std::size_t kept = store.size();
   if (kept + fresh > max_n) {
