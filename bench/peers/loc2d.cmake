@@ -1,4 +1,5 @@
-# Included by bench/peers/CMakeLists.txt. The peer driver of bench/compare-loc2d: iris_lama's Loc2D (a scan matcher) run over the same
+# Included by bench/peers/CMakeLists.txt.
+# The peer driver of bench/compare-loc2d: iris_lama's Loc2D (a scan matcher) run over the same
 # logs with mote's readers and mote's ATE code. Built only when MOTE_LOC2D_SOURCE names a checkout
 # of https://github.com/iris-ua/iris_lama: no peer source is committed and nothing is downloaded.
 set(_lama "${MOTE_LOC2D_SOURCE}")
