@@ -1,7 +1,7 @@
 // beluga_driver: Beluga's side of bench/compare-beluga (Beluga:
 // https://github.com/Ekumen-OS/beluga, a header-only C++17 MCL library; its source is the user's
 // checkout, never part of this repository). Beluga's particle filter as its Amcl class composes it
-// (beluga/algorithm/ amcl_core.hpp: propagate, reweight, normalize, resample, estimate), with
+// (beluga/algorithm/amcl_core.hpp: propagate, reweight, normalize, resample, estimate), with
 // nav2_amcl's parameters as beluga_amcl reads them, but the particle count fixed (a resample draws
 // exactly N, where Amcl would draw a KLD-adaptive count) and a resample at every update, as mote's
 // side runs; no recovery (nav2's alpha_slow = alpha_fast = 0), so no random particles are mixed in.
