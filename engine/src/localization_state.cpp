@@ -21,13 +21,10 @@ LocalizationState LocalizationMonitor::update(double see_through, double hit_sha
                                               bool one_place) noexcept {
   const double misfit = see_through + (1.0 - hit_share);
   if (!std::isfinite(misfit)) return state_;
-  // Learned from scans taken while the filter tracks one place: the previous verdict, as this
-  // scan's is still to be made.
-  if (state_ == LocalizationState::kTracking && one_place) baseline_.add(misfit);
   smoothed_ = started_ ? smoothed_ + config_.smoothing * (misfit - smoothed_) : misfit;
   started_ = true;
   if (settling_ > 0) --settling_;
-  if (smoothed_ > lost_bound()) {
+  if (smoothed_ > config_.lost_misfit) {
     state_ = LocalizationState::kLost;
   } else if (one_place && settling_ == 0) {
     state_ = LocalizationState::kTracking;
@@ -35,25 +32,6 @@ LocalizationState LocalizationMonitor::update(double see_through, double hit_sha
     state_ = LocalizationState::kUncertain;
   }
   return state_;
-}
-
-void MisfitBaseline::add(double misfit) noexcept {
-  // Welford's running mean and variance until the window is full, then exponential forgetting
-  // at kRate (West 1979's weighted update), so the baseline follows a map that ages.
-  ++n_;
-  const double rate = std::max(kRate, 1.0 / static_cast<double>(n_));
-  const double d = misfit - mean_;
-  mean_ += rate * d;
-  variance_ = (1.0 - rate) * (variance_ + rate * d * d);
-}
-
-double MisfitBaseline::bound() const noexcept {
-  if (n_ < kMinSamples) return 0.0;
-  return mean_ + kZ * std::sqrt(std::max(0.0, variance_));
-}
-
-double LocalizationMonitor::lost_bound() const noexcept {
-  return std::max(config_.lost_misfit, baseline_.bound());
 }
 
 void LocalizationMonitor::reset_after_relocalization() noexcept {

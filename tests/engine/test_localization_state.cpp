@@ -51,30 +51,6 @@ TEST(LocalizationMonitor, SmoothsTheMisfitAndNamesTheState) {
   EXPECT_STREQ(name_of(LocalizationState::kUncertain), "uncertain");
 }
 
-// The bound learns the misfit seen while tracking: on a map whose scans see through it
-// everywhere (misfit 0.5 +- 0.1 while the filter is right) a smoothed misfit of 0.65 is not
-// lost, while a kidnapped robot's (1.2) still is; before 50 tracking scans, and on a map that
-// fits (0.1 +- 0.05), the bound is lost_misfit.
-TEST(LocalizationMonitor, TheLostBoundLearnsTheMisfitSeenWhileTracking) {
-  LocalizationMonitor m({.smoothing = 0.3, .lost_misfit = 0.6});
-  for (int k = 0; k < 49; ++k) m.update(0.0, 1.0 - (k % 2 == 0 ? 0.4 : 0.6), true);
-  EXPECT_EQ(m.lost_bound(), 0.6);  // 48 tracking scans learned (the first is not): too few
-  for (int k = 0; k < 200; ++k) m.update(0.0, 1.0 - (k % 2 == 0 ? 0.4 : 0.6), true);
-  EXPECT_NEAR(m.baseline().bound(), 0.5 + 3.09 * 0.1, 0.02);
-  EXPECT_EQ(m.update(0.15, 0.5, true),
-            LocalizationState::kTracking);  // 0.65 at once: smoothed 0.545
-  for (int k = 0; k < 5; ++k) m.update(0.15, 0.5, true);
-  EXPECT_GT(m.smoothed(), 0.6);
-  EXPECT_EQ(m.state(), LocalizationState::kTracking);
-  for (int k = 0; k < 5; ++k) m.update(0.6, 0.4, true);  // 1.2: nowhere near the map
-  EXPECT_EQ(m.state(), LocalizationState::kLost);
-
-  LocalizationMonitor fits({.smoothing = 0.3, .lost_misfit = 0.6});
-  for (int k = 0; k < 200; ++k) fits.update(0.0, 1.0 - (k % 2 == 0 ? 0.05 : 0.15), true);
-  EXPECT_LT(fits.baseline().bound(), 0.6);
-  EXPECT_EQ(fits.lost_bound(), 0.6);
-}
-
 class StateOnIntel : public ::testing::Test {
  protected:
   void SetUp() override {

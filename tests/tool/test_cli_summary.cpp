@@ -42,8 +42,6 @@ TEST(CliSummary, TrackingSinceIsTheLastUnbrokenStretchAfterAWrongStart) {
 // carried elsewhere for the log's last 9 scans): the run ends lost on its last updates, but on
 // too few of the last 20 to call the run lost. Whatever the filter reads there, "localized"
 // never says yes beside "ends lost", and the exit status matches the words (3 only for NO).
-// (Wean from a global start, which this test read before, now ends tracking: the misfit it
-// learns while tracking lifts the lost bound over the room its map does not show.)
 TEST(CliSummary, LocalizedNeverContradictsTheEndState) {
   MOTE_REQUIRE_DATA(yaml, "intel/intel.yaml");
   const fs::path data = yaml.parent_path();

@@ -52,31 +52,6 @@ struct LocalizationStateConfig {
   double lost_misfit = 0.6;
 };
 
-/// What the misfit looks like while the filter tracks, on this map and this laser: the mean and
-/// variance of the per-scan misfit over about the last 1 / kRate tracking updates. A map with
-/// glass, open doors or vegetation it does not show has scans that see through it wherever the
-/// robot is; there the fixed bound reads `lost` while the filter is right, and a re-localization
-/// then offers the report every look-alike place. The learned bound, mean plus kZ standard
-/// deviations of the per-scan misfit (one scan in a thousand above it while the world looks as
-/// it has), lifts the bound on such a map only; on a map that fits it stays below lost_misfit.
-class MisfitBaseline {
- public:
-  static constexpr double kRate = 0.01;
-  static constexpr double kZ = 3.09;
-  /// Tracking updates before the baseline speaks: its variance from fewer is too rough.
-  static constexpr std::uint64_t kMinSamples = 50;
-
-  void add(double misfit) noexcept;
-  /// mean + kZ sd, or 0 before kMinSamples.
-  [[nodiscard]] double bound() const noexcept;
-  [[nodiscard]] std::uint64_t samples() const noexcept { return n_; }
-
- private:
-  double mean_ = 0.0;
-  double variance_ = 0.0;
-  std::uint64_t n_ = 0;
-};
-
 /// The smoothed misfit and the state it gives.
 class LocalizationMonitor {
  public:
@@ -103,10 +78,6 @@ class LocalizationMonitor {
   void reset_after_relocalization() noexcept;
 
   [[nodiscard]] double smoothed() const noexcept { return smoothed_; }
-  /// The bound the smoothed misfit is lost above: lost_misfit, or the baseline learned while
-  /// tracking where that is higher. reset() keeps the baseline: it belongs to the map and laser.
-  [[nodiscard]] double lost_bound() const noexcept;
-  [[nodiscard]] const MisfitBaseline& baseline() const noexcept { return baseline_; }
   [[nodiscard]] LocalizationState state() const noexcept { return state_; }
   [[nodiscard]] const LocalizationStateConfig& config() const noexcept { return config_; }
 
@@ -115,7 +86,6 @@ class LocalizationMonitor {
   double smoothed_ = 0.0;
   bool started_ = false;
   int settling_ = 0;  // updates before `tracking` is possible again
-  MisfitBaseline baseline_;
   LocalizationState state_ = LocalizationState::kUncertain;
 };
 
