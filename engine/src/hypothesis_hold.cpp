@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mote/engine/kld.hpp"
+
 namespace mote {
 
 bool HypothesisHold::other_place(const Pose2& a, const Pose2& b, double range) noexcept {
@@ -21,18 +23,24 @@ double HypothesisHold::z(const HitDifference& d, double correlation) noexcept {
 }
 
 bool HypothesisHold::after_scan(const HitDifference& d, double correlation, double travelled,
-                                double range) noexcept {
+                                double range) {
   sum_.only_challenger += d.only_challenger;
   sum_.only_held += d.only_held;
   // The travel since the first scan of the challenge: the motion before it saw no evidence.
   if (scans_ > 0) travelled_ += std::max(0.0, travelled);
   ++scans_;
   const double evidence = z(sum_, correlation);
-  if (evidence < -kZ) {
+  const double bound = boundary(scans_);
+  if (evidence < -bound) {
     challenge();  // the held place explained the scans better: start over
     return false;
   }
-  return evidence > kZ && scans_ >= kMinScans && travelled_ >= range;
+  return evidence > bound && scans_ >= kMinScans && travelled_ >= range;
+}
+
+double HypothesisHold::boundary(int n) {
+  const double looks = static_cast<double>(std::max(1, n));
+  return standard_normal_quantile(1.0 - kAlpha / (looks * (looks + 1.0)));
 }
 
 }  // namespace mote

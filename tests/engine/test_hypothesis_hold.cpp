@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "mote/engine/localizer.hpp"
@@ -38,12 +39,38 @@ TEST(HypothesisHold, McNemarsStatisticCountsCorrelatedReadingsAsFewer) {
   EXPECT_EQ(HypothesisHold::z({}, 1.0), 0.0);
 }
 
+TEST(HypothesisHold, TheBoundarySpendsTheSignificanceOverEveryLook) {
+  EXPECT_NEAR(HypothesisHold::boundary(1), 3.29, 0.01);  // 0.001 / 2
+  EXPECT_NEAR(HypothesisHold::boundary(2), 3.59, 0.01);
+  EXPECT_NEAR(HypothesisHold::boundary(10), 4.29, 0.01);
+  EXPECT_NEAR(HypothesisHold::boundary(100), 5.20, 0.01);
+  // A challenge between two places that differ only by noise: 10 discordant readings a scan,
+  // split evenly at random, for 1000 scans in each of 400 runs (deterministic draws); at the
+  // level of a single look for every scan 2.6 % of them handed over.
+  std::mt19937_64 rng(5);
+  int handed_over = 0;
+  for (int run = 0; run < 400; ++run) {
+    HypothesisHold hold;
+    hold.challenge();
+    for (int k = 0; k < 1000; ++k) {
+      HitDifference d;
+      for (int r = 0; r < 10; ++r) ((rng() & 1U) != 0 ? d.only_challenger : d.only_held) += 1;
+      if (hold.after_scan(d, 1.0, 1.0, 0.0)) {
+        ++handed_over;
+        break;
+      }
+    }
+  }
+  EXPECT_LE(handed_over, 2) << "of 400";  // 0.001 nominal: 0.4 expected
+}
+
 TEST(HypothesisHold, TheChallengerWinsOnEvidenceSummedOverOneRangeOfTravel) {
   HypothesisHold hold;
   hold.challenge();
-  // 12 against 0 is z = 3.46 in one scan, but the first scan starts the travel.
-  EXPECT_FALSE(hold.after_scan({.only_challenger = 12}, 1.0, 0.5, 2.0));
+  // 20 against 0 is z = 4.47 in one scan, but the first scan starts the travel.
+  EXPECT_FALSE(hold.after_scan({.only_challenger = 20}, 1.0, 0.5, 2.0));
   EXPECT_FALSE(hold.after_scan({}, 1.0, 1.0, 2.0));  // 1 m: not yet a new view
+  // 21 against 1: z = 4.26 beyond the third look's boundary, 3.76.
   EXPECT_TRUE(hold.after_scan({.only_challenger = 1, .only_held = 1}, 1.0, 1.0, 2.0));
   // Evidence both ways that never leans beyond chance: no switch, however far.
   hold.challenge();
@@ -54,7 +81,7 @@ TEST(HypothesisHold, TheChallengerWinsOnEvidenceSummedOverOneRangeOfTravel) {
   // The held place explaining the scans better starts the evidence over.
   hold.challenge();
   EXPECT_FALSE(hold.after_scan({.only_challenger = 8}, 1.0, 1.0, 2.0));
-  EXPECT_FALSE(hold.after_scan({.only_held = 30}, 1.0, 1.0, 2.0));
+  EXPECT_FALSE(hold.after_scan({.only_held = 40}, 1.0, 1.0, 2.0));  // z = -4.62 past -3.59
   EXPECT_EQ(hold.scans(), 0);
   EXPECT_TRUE(hold.active());
   // However far the robot went, one scan is not a run.
