@@ -1,7 +1,6 @@
 // The reported pose while another place challenges the tracked one (hypothesis_hold.hpp).
 #include <cmath>
 
-#include "blocked_beams.hpp"
 #include "localizer_impl.hpp"
 
 namespace mote {
@@ -17,7 +16,7 @@ void Localizer::Impl::hold_reported_place(const Pose2& odometry) {
   }
   const Pose2 moved = between(last_odometry, odometry);
   const Pose2 carried = compose(held, moved);
-  const double range = mean_endpoint_range(readings);
+  const double range = scan_range;
   if (endpoints.empty()) {  // no scale and no evidence: the report stays where it was
     held = hold.active() ? carried : reported;
     if (hold.active()) hold_report(ScanMatch{.pose = carried});

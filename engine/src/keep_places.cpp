@@ -77,7 +77,7 @@ void Localizer::Impl::keep_places(const Pose2& odometry) {
   // look-alike corridors in the belief until one of them won.
   if (!has_held || estimate.clusters.size() < 2 || endpoints.empty()) return;
   const Pose2 moved = between(last_odometry, odometry);
-  const double range = mean_endpoint_range(readings);
+  const double range = scan_range;
   const PoseEstimate& best = estimate.clusters.front();
   const auto at = [&](const Pose2& place, const Pose2& pose) {
     return !HypothesisHold::other_place(place, pose, range);

@@ -116,6 +116,7 @@ struct Localizer::Impl {
   BeamSet beams;
   BeamSet readings;               // every valid reading with an endpoint (the matcher's)
   std::vector<Point2> endpoints;  // their endpoints in the robot frame
+  double scan_range = 0.0;        // their mean range (0 when none): the scale of places
   std::vector<float> loglik;      // untempered scan log-likelihood per particle (padded)
   LocalizationEstimate estimate;
   UpdateStats stats;

@@ -153,6 +153,7 @@ void Localizer::Impl::select_endpoints(const LaserScan& scan) {
     endpoints.push_back(
         {s.x + readings.range[b] * std::cos(a), s.y + readings.range[b] * std::sin(a)});
   }
+  scan_range = mean_endpoint_range(readings);
 }
 
 bool Localizer::Impl::moved_enough(const Pose2& odometry) const {
@@ -370,7 +371,7 @@ void Localizer::Impl::judge_focus() {
   // (or, before the first update, the scan about to be weighed).
   focused = BlockedBeamFilter::focused_on(readings, *field, estimate.clusters);
   // A scan without an endpoint has no scale to tell places apart by: the last verdict stands.
-  if (mean_endpoint_range(readings) > 0.0 || !focus_judged) {
+  if (scan_range > 0.0 || !focus_judged) {
     const BlockedBeamFilter::Places places =
         BlockedBeamFilter::places_on(readings, estimate.clusters);
     one_place = places.one;

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "blocked_beams.hpp"
 #include "field_walker.hpp"
 #include "localizer_impl.hpp"
 #include "mote/engine/recovery.hpp"
@@ -114,7 +113,7 @@ void Localizer::Impl::maybe_relocalize() {
   // Local: within one scan range of the reported pose (held or refined), every heading. Odometry
   // that missed a turn or slid along a corridor leaves the robot there, and a global set would
   // offer every look-alike place of the building instead.
-  const double radius = mean_endpoint_range(readings);
+  const double radius = scan_range;
   const bool local = relocalize_locally && radius > 0.0 && is_finite(estimate.refined.pose);
   std::size_t fresh = std::min(local ? local_count(radius) : global_count(), max_n);
   std::size_t kept = store.size();
