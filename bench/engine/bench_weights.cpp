@@ -66,6 +66,20 @@ void BM_Kld_CountBins(benchmark::State& state) {
   set_particle_rate(state, n);
 }
 
+// The same particles (a 40 m square) counted in the bins of a 490 m x 345 m map (the Intel map
+// tiled 12 x 9): the count's cost follows the particles, not the map's area.
+void BM_Kld_CountBinsBigMap(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const ParticleStore store = random_store(n);
+  KldBins bins({-20.0, -25.0, 470.0, 320.0}, 0.5, 0.5, 10.0 * 3.14159265 / 180);
+  const Executor ex(static_cast<int>(state.range(1)));
+  const KldConfig config;
+  ex([&] {
+    for (auto _ : state) benchmark::DoNotOptimize(kld_sample_count(store.view(), bins, config));
+  });
+  set_particle_rate(state, n);
+}
+
 void BM_Kld_CountBinsHashSet(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const ParticleStore store = random_store(n);
@@ -190,6 +204,7 @@ void beam_cases(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_Weights_Normalize)->Apply(particle_thread_grid);
 BENCHMARK(BM_Weights_NormalizeNaive)->Apply(particle_grid);
 BENCHMARK(BM_Kld_CountBins)->Apply(particle_thread_grid);
+BENCHMARK(BM_Kld_CountBinsBigMap)->Apply(particle_thread_grid);
 BENCHMARK(BM_Kld_CountBinsHashSet)->Apply(particle_grid);
 BENCHMARK(BM_BeamModel_LikelihoodScalar)->Apply(beam_cases);
 BENCHMARK(BM_BeamModel_LikelihoodBatched)->Apply(beam_cases);

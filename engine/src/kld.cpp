@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <cmath>
 #include <string>
 
@@ -134,29 +133,47 @@ std::size_t KldBins::count(const ConstParticleView& p, std::size_t grain) {
 
 template <class Keep>
 std::size_t KldBins::count_where(const ConstParticleView& p, const Keep& keep, std::size_t grain) {
-  std::fill(words_.begin(), words_.end(), 0);
+  // The bitset is all zero between calls. A bin counts once, for the one particle whose
+  // fetch_or turns its bit on: the sum does not depend on the order the chunks run in, and the
+  // work is proportional to the particles, not to the map (a 490 m map has 24 M bins, which a
+  // clear and a count over every word paid on each of an update's draw rounds).
+  std::uint64_t* words = words_.data();
+  const std::size_t k = par::reduce(
+      p.size(), grain, std::size_t{0},
+      /*partial=*/
+      [&](std::size_t begin, std::size_t end) {
+        std::size_t fresh = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+          if (!keep(i)) continue;
+          const std::uint64_t bin = bin_of(p.x[i], p.y[i], p.theta[i]);
+          std::atomic_ref<std::uint64_t> word(words[bin >> 6]);
+          const std::uint64_t bit = std::uint64_t{1} << (bin & 63);
+          if ((word.load(std::memory_order_relaxed) & bit) == 0 &&
+              (word.fetch_or(bit, std::memory_order_relaxed) & bit) == 0) {
+            ++fresh;
+          }
+        }
+        return fresh;
+      },
+      /*join=*/[](std::size_t a, std::size_t b) { return a + b; });
+  clear(p, grain);
+  return k;
+}
+
+void KldBins::clear(const ConstParticleView& p, std::size_t grain) {
+  if (words_.size() <= p.size()) {
+    std::fill(words_.begin(), words_.end(), 0);
+    return;
+  }
+  // Fewer particles than words: zero the words the particles can have set, every one of them
+  // whether kept or not (a word zeroed twice is still zero).
   std::uint64_t* words = words_.data();
   par::for_each_chunk(p.size(), grain, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      if (!keep(i)) continue;
       const std::uint64_t bin = bin_of(p.x[i], p.y[i], p.theta[i]);
-      std::atomic_ref<std::uint64_t> word(words[bin >> 6]);
-      const std::uint64_t bit = std::uint64_t{1} << (bin & 63);
-      if ((word.load(std::memory_order_relaxed) & bit) == 0) {
-        word.fetch_or(bit, std::memory_order_relaxed);
-      }
+      std::atomic_ref<std::uint64_t>(words[bin >> 6]).store(0, std::memory_order_relaxed);
     }
   });
-  return par::reduce(
-      words_.size(), grain, std::size_t{0},
-      /*partial=*/
-      [&](std::size_t begin, std::size_t end) {
-        std::size_t k = 0;
-        for (std::size_t w = begin; w < end; ++w)
-          k += static_cast<std::size_t>(std::popcount(words[w]));
-        return k;
-      },
-      /*join=*/[](std::size_t a, std::size_t b) { return a + b; });
 }
 
 std::size_t kld_sample_count(const ConstParticleView& particles, KldBins& bins,

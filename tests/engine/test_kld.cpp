@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "mote/core/error.hpp"
 #include "mote/engine/executor.hpp"
@@ -85,6 +86,32 @@ TEST(KldBins, CountIsIndependentOfThreads) {
   KldConfig config;
   config.max_particles = 100000;
   EXPECT_EQ(kld_sample_count(p, bins, config), kld_sample_count(serial, config));
+}
+
+// Each count starts from an empty bitset, whether the last call cleared the whole bitset (more
+// particles than words) or only the words its particles could set (a 490 m region, 24 M bins).
+TEST(KldBins, EveryCountStartsFromNoBinsOnAnyRegion) {
+  for (const Bounds2 region :
+       {Bounds2{-5.0, -5.0, 5.0, 5.0}, Bounds2{-20.0, -25.0, 470.0, 320.0}}) {
+    KldBins bins(region, 0.5, 0.5, 10.0 * std::numbers::pi / 180);
+    ParticleStore first(3000);
+    ParticleStore second(3000);
+    for (std::size_t i = 0; i < 3000; ++i) {
+      first.view().set_pose(i, {0.003 * double(i) - 4.0, 0.001 * double(i), 0.002 * double(i)});
+      second.view().set_pose(i, {4.0 - 0.0017 * double(i), -0.001 * double(i), -0.001 * double(i)});
+    }
+    const std::size_t first_alone =
+        KldBins(region, 0.5, 0.5, 10.0 * std::numbers::pi / 180).count(std::as_const(first).view());
+    const std::size_t second_alone = KldBins(region, 0.5, 0.5, 10.0 * std::numbers::pi / 180)
+                                         .count(std::as_const(second).view());
+    ASSERT_GT(first_alone, 50U);
+    const Executor ex(2);
+    ex([&] {
+      EXPECT_EQ(bins.count(std::as_const(first).view(), 64), first_alone);
+      EXPECT_EQ(bins.count(std::as_const(second).view(), 64), second_alone);
+      EXPECT_EQ(bins.count(std::as_const(first).view(), 64), first_alone);
+    });
+  }
 }
 
 // A weighted set: 3000 particles spread along a line, weights falling off with the index.

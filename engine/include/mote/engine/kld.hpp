@@ -3,7 +3,8 @@
 /// KLD-adaptive sample size (Fox, "Adapting the sample size in particle filters through
 /// KLD-sampling", IJRR 2003): the number of particles n such that, with probability 1 - delta,
 /// the KL divergence between the particle approximation and the true posterior stays below eps,
-/// given k occupied histogram bins. Bins are counted with a dense bitset over the map region.
+/// given k occupied histogram bins. Bins are counted with a dense bitset over the map region, in
+/// time proportional to the particles.
 
 #include <cstddef>
 #include <cstdint>
@@ -68,6 +69,8 @@ class KldBins {
  private:
   template <class Keep>
   std::size_t count_where(const ConstParticleView& particles, const Keep& keep, std::size_t grain);
+  /// Zeroes every bit the particles can have set (the whole bitset when that is cheaper).
+  void clear(const ConstParticleView& particles, std::size_t grain);
 
   Bounds2 region_;
   float inv_x_, inv_y_, inv_t_;
