@@ -20,6 +20,8 @@ struct WallSegment {
 
 /// Every cell edge whose two sides differ in blocking, merged into maximal runs along each grid
 /// line. Which side blocks does not matter to a ray, so runs continue across such changes.
+/// Built in parallel in the caller's task arena; the list and its order do not depend on the
+/// thread count.
 [[nodiscard]] std::vector<WallSegment> wall_segments(const CellMask& mask);
 
 }  // namespace mote::detail
