@@ -229,4 +229,10 @@ const RangeTable* Localizer::range_table() const noexcept {
   return beam != nullptr ? beam->range_table() : nullptr;
 }
 
+std::optional<BeamCasting> Localizer::beam_casting() const noexcept {
+  const auto* beam = impl_->sensor ? std::get_if<BeamModel>(impl_->sensor.get()) : nullptr;
+  if (beam == nullptr) return std::nullopt;
+  return beam->casting();
+}
+
 }  // namespace mote

@@ -35,9 +35,9 @@ std::string megabytes(std::size_t bytes) {
   return std::to_string((bytes + (std::size_t{1} << 20U) - 1) >> 20U) + " MB";
 }
 
-/// The finest lattice whose table fits the budget; ConfigError naming the coarsest's size.
-int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o) {
-  std::size_t needed = 0;
+/// The finest lattice whose table fits the budget, 0 when none up to kMaxLattice; `needed` gets
+/// the bytes of the last lattice tried.
+int fitting_lattice(const detail::CellMask& mask, const RangeTableOptions& o, std::size_t& needed) {
   const std::size_t cells =
       static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height);
   for (int lattice = 1; lattice <= kMaxLattice; ++lattice) {
@@ -51,6 +51,14 @@ int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o) {
         detail::table_bytes(detail::count_lattice_points(mask, lattice), blocks, cells, o.angles);
     if (needed <= o.memory_budget_bytes) return lattice;
   }
+  return 0;
+}
+
+/// fitting_lattice, or ConfigError naming the coarsest's size.
+int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o) {
+  std::size_t needed = 0;
+  const int lattice = fitting_lattice(mask, o, needed);
+  if (lattice > 0) return lattice;
   throw ConfigError("range table: a memory budget of " + megabytes(o.memory_budget_bytes) +
                     " holds no table of this map at " + std::to_string(o.angles) +
                     " angles; the coarsest lattice (" + std::to_string(kMaxLattice) +
@@ -137,6 +145,15 @@ RangeTable::RangeTable(const OccupancyGrid& grid, RangeTableOptions options)
   impl_->options = options;
   impl_->blocking = detail::blocking_mask(grid, options.unknown_blocks);
   impl_->build();
+}
+
+int range_table_lattice(const OccupancyGrid& grid, const RangeTableOptions& options) {
+  check_options(options);
+  const std::vector<std::uint8_t> blocking = detail::blocking_mask(grid, options.unknown_blocks);
+  const detail::CellMask mask{grid.width(), grid.height(), static_cast<float>(grid.resolution()),
+                              blocking.data()};
+  std::size_t needed = 0;
+  return fitting_lattice(mask, options, needed);
 }
 
 RangeTable::~RangeTable() = default;

@@ -70,4 +70,25 @@ void write_range_table_json(JsonWriter& json, const RangeTableSummary& s) {
   json.end_object();
 }
 
+void print_beam_casting(std::ostream& out, const BeamCasting& casting, double resolution,
+                        double budget_mb, double sigma_hit) {
+  if (!casting.table_asked || casting.table) return;
+  const std::string budget = fixed(budget_mb, budget_mb < 10.0 ? 1 : 0) + " MB";
+  const std::string why = casting.budget_lattice == 0
+                              ? "no lattice of the range table fits " + budget
+                              : "the range table fits " + budget + " only on a lattice of " +
+                                    std::to_string(casting.budget_lattice) + " cells (" +
+                                    fixed(casting.budget_lattice * resolution, 2) +
+                                    " m), coarser than sigma_hit (" + fixed(sigma_hit, 2) + " m)";
+  line(out, "ray casting", "exact: " + why);
+}
+
+void write_beam_casting_json(JsonWriter& json, const BeamCasting& casting) {
+  json.key("beam_casting").begin_object();
+  json.member("table", casting.table).member("table_asked", casting.table_asked);
+  json.member("budget_lattice_cells", casting.budget_lattice);
+  json.member("max_lattice_cells", casting.max_lattice);
+  json.end_object();
+}
+
 }  // namespace mote::replay

@@ -155,6 +155,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   Localizer filter(result.grid, options.config);  // shares the map: no copy
   result.threads = filter.threads();
   result.global_set = filter.global_set();
+  result.beam_casting = filter.beam_casting();
   const RangeTable* table = filter.range_table();
   if (table) {
     result.range_table = summarize_range_table(

@@ -336,6 +336,7 @@ void write_report_json(std::ostream& out, const ReplayResult& result,
   write_errors(json, result);
   write_kidnap(json, result);
   if (result.range_table) write_range_table_json(json, *result.range_table);
+  if (result.beam_casting) write_beam_casting_json(json, *result.beam_casting);
   if (options.profile) write_profile_json(json, profile_run(result));
   json.end_object();
 }
@@ -394,6 +395,10 @@ void print_summary(std::ostream& out, const ReplayResult& result, const ReportOp
   row(out, "laser max range", range);
   row(out, "skipped records", std::to_string(result.reader.records_skipped));
   if (result.range_table) print_range_table(out, *result.range_table);
+  if (result.beam_casting) {
+    print_beam_casting(out, *result.beam_casting, result.map().resolution(),
+                       result.config.range_table_budget_mb, result.config.sigma_hit);
+  }
   if (options.profile) {
     print_profile(out, profile_run(result));
     row(out, "log reading",

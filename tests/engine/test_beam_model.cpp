@@ -90,5 +90,58 @@ TEST(BeamModelWeigh, AddsTheScalarScanLikelihoodOfTheCastRangesToItsRange) {
   EXPECT_TRUE(std::isnan(particles.logw[100]));
 }
 
+// The range table serves the casts only on a lattice no coarser than sigma_hit; where the budget
+// allows only a coarser one (a big map), or none at all, the model casts exactly.
+TEST(BeamModelCasting, TheTableOnlyOnALatticeWithinSigmaHitElseExactCasting) {
+  const OccupancyGrid grid = room();  // 10 cm cells: sigma_hit 0.2 m allows a lattice of 2
+  const auto model_with = [&](double budget_mb, double sigma_hit) {
+    MixtureParams mixture;
+    mixture.sigma_hit = sigma_hit;
+    return BeamModel(
+        grid, {.mixture = mixture},
+        RangeTableOptions{.memory_budget_bytes = static_cast<std::size_t>(budget_mb * 1048576.0)});
+  };
+  const BeamModel every_cell = model_with(64.0, 0.2);
+  EXPECT_TRUE(every_cell.casting().table);
+  EXPECT_EQ(every_cell.casting().budget_lattice, 1);
+  ASSERT_NE(every_cell.range_table(), nullptr);
+  EXPECT_EQ(every_cell.range_table()->stats().lattice, 1);
+
+  const BeamModel coarse = model_with(1.0, 0.2);  // 7.7 MB on every cell
+  EXPECT_TRUE(coarse.casting().table_asked);
+  EXPECT_EQ(coarse.casting().max_lattice, 2);
+  EXPECT_GT(coarse.casting().budget_lattice, 2);
+  EXPECT_FALSE(coarse.casting().table);
+  EXPECT_EQ(coarse.range_table(), nullptr);
+
+  const BeamModel wide_noise = model_with(1.0, 0.5);
+  EXPECT_EQ(wide_noise.casting().max_lattice, 7);  // floor(sqrt(2) 0.5 / 0.1)
+  ASSERT_NE(wide_noise.range_table(), nullptr);
+  EXPECT_EQ(wide_noise.range_table()->stats().lattice, coarse.casting().budget_lattice);
+
+  const BeamModel none = model_with(0.001, 0.2);  // no lattice fits: exact casting, no error
+  EXPECT_EQ(none.casting().budget_lattice, 0);
+  EXPECT_FALSE(none.casting().table);
+
+  // Without the table the ranges are exact casting's.
+  const BeamModel exact(grid, {});
+  EXPECT_FALSE(exact.casting().table_asked);
+  const std::vector<float> angles{0.0F, 1.0F, 2.0F, -2.5F};
+  const std::vector<float> x{2.05F, 7.3F};
+  const std::vector<float> y{1.5F, 6.1F};
+  const std::vector<float> theta{0.3F, -1.2F};
+  const RayBatch batch{.x = x,
+                       .y = y,
+                       .theta = theta,
+                       .beam_angles = angles,
+                       .sensor_offset = {},
+                       .max_range = 12.0F};
+  std::vector<float> from_exact(8);
+  std::vector<float> from_coarse(8);
+  exact.expected_ranges(batch, from_exact);
+  coarse.expected_ranges(batch, from_coarse);
+  EXPECT_EQ(from_coarse, from_exact);
+}
+
 }  // namespace
 }  // namespace mote

@@ -278,7 +278,29 @@ TEST(Cli, ReplayReportsTheCoarserLatticeOfATableOverBudget) {
   const std::string report = replay_beam_report(
       dir, "ray_casting: table\nrange_table_angles: 64\nrange_table_budget_mb: 3\n");
   EXPECT_GT(json_number(report, "lattice_cells"), 1.0) << report;
+  EXPECT_LE(json_number(report, "lattice_cells"), json_number(report, "max_lattice_cells"));
   EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
+}
+
+// Where the budget holds the table only on a lattice coarser than sigma_hit (a big map), the beam
+// model casts exactly, and the summary and report.json say why.
+TEST(Cli, ReplayCastsExactlyWhereTheTableWouldBeCoarserThanSigmaHit) {
+  const fs::path dir = scratch("coarser_than_sigma");
+  ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));
+  const std::string config =
+      "ray_casting: table\nrange_table_angles: 64\nrange_table_budget_mb: 0.3\nsigma_hit: 0.1\n";
+  const std::string report = replay_beam_report(dir, config);
+  EXPECT_EQ(report.find("\"range_table\""), std::string::npos) << report;
+  EXPECT_NE(report.find("\"table\": false"), std::string::npos) << report;
+  EXPECT_GT(json_number(report, "budget_lattice_cells"), json_number(report, "max_lattice_cells"));
+  EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
+  const Outcome o = mote(replay_simulated(dir) + " --particles 1000 --model beam --config '" +
+                         (dir / "config.yaml").string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(
+      o.out.find("ray casting           exact: the range table fits 0.3 MB only on a lattice of "),
+      std::string::npos)
+      << o.out;
 }
 
 // An MCAP file cut short (here: the recording's zstd file cut in its middle, as a crash while

@@ -28,6 +28,18 @@ struct BeamModelParams {
   LikelihoodCombination combination = LikelihoodCombination::kProduct;
 };
 
+/// How the beam model finds its expected ranges, and why.
+struct BeamCasting {
+  bool table_asked = false;  ///< RangeTableOptions were given (ray_casting: table)
+  bool table = false;        ///< a RangeTable serves the casts; otherwise exact Embree casting
+  /// The lattice (cells) the table's budget gives on this map; 0 when no lattice fits.
+  int budget_lattice = 0;
+  /// The coarsest lattice whose rays pass within sigma_hit of the sensor, the noise the model
+  /// already assumes of every expected range: the ray read lies at most spacing / sqrt(2) to its
+  /// side, so floor(sqrt(2) sigma_hit / resolution), at least 1.
+  int max_lattice = 0;
+};
+
 /// Weighs particles by sum over beams of log p(z_b | z*_b(x)) (eqs. 6.4-6.11), z* ray-cast with
 /// Embree in 16-ray packets. A max-range reading is weighed at z = z_max by the whole mixture
 /// (eq. 6.12: the z_max point mass plus p_hit and p_short there), so particles that expect a
@@ -35,7 +47,12 @@ struct BeamModelParams {
 class BeamModel {
  public:
   /// Builds the Embree scene of the grid, or, when `table` is set, a RangeTable with those
-  /// options (their unknown_blocks replaced by params.unknown_blocks).
+  /// options (their unknown_blocks replaced by params.unknown_blocks) if its budget holds it on
+  /// a lattice whose rays pass within sigma_hit of the sensor (BeamCasting::max_lattice). A
+  /// coarser lattice reads rays farther to the sensor's side than the noise the model allows
+  /// every expected range, and the lattice grows with the map's area (a 490 m floor at 256 MB:
+  /// 19 cells), so there the model casts exactly: the accuracy does not depend on the size of
+  /// the building. casting() says which and why.
   BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
             const std::optional<RangeTableOptions>& table = std::nullopt);
 
@@ -50,11 +67,13 @@ class BeamModel {
   [[nodiscard]] const RangeTable* range_table() const noexcept {
     return table_ ? &*table_ : nullptr;
   }
+  [[nodiscard]] const BeamCasting& casting() const noexcept { return casting_; }
 
  private:
   BeamModelParams params_;
   std::optional<RayCaster> exact_;
   std::optional<RangeTable> table_;
+  BeamCasting casting_;
 };
 
 static_assert(SensorModel<BeamModel>);

@@ -28,11 +28,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mote/core/pose.hpp"
 #include "mote/core/scan.hpp"
+#include "mote/engine/beam_model.hpp"
 #include "mote/engine/estimate.hpp"
 #include "mote/engine/localization_state.hpp"
 #include "mote/engine/localizer_config.hpp"
@@ -208,6 +210,9 @@ class Localizer {
   /// The beam model's range table (ray_casting: table), or nullptr (its stats() say what it
   /// cost; mote/raycast/range_table.hpp).
   [[nodiscard]] const RangeTable* range_table() const noexcept;
+  /// The beam model's choice between the range table and exact casting, and why; nullopt for
+  /// the likelihood field.
+  [[nodiscard]] std::optional<BeamCasting> beam_casting() const noexcept;
 
  private:
   struct Impl;

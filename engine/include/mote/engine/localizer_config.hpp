@@ -157,7 +157,8 @@ struct LocalizerConfig {
   /// Range table: directions over the full circle, a positive multiple of 32.
   int range_table_angles = 512;
   /// Range table: memory budget (MB). When the table on every cell does not fit, it is built on
-  /// a coarser lattice (a point every 2, 3, ... cells).
+  /// a coarser lattice (a point every 2, 3, ... cells) of at most sqrt(2) sigma_hit; past that
+  /// the beam model casts exactly (BeamModel, BeamCasting).
   double range_table_budget_mb = 256.0;
   /// Once the belief has settled on one place, leave out, for every particle alike, the beams
   /// that most of it finds blocked by something the map does not hold (people, a crowd, furniture):

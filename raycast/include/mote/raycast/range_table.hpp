@@ -71,6 +71,12 @@ class RangeTable {
 
 static_assert(RayCasterLike<RangeTable>);
 
+/// The lattice (cells between points) a RangeTable of this grid with these options would have:
+/// the finest whose table fits the budget, or 0 when not even the coarsest does (where the
+/// constructor throws). Costs a pass over the grid per lattice tried, not a build. Throws
+/// ConfigError when the options are invalid.
+[[nodiscard]] int range_table_lattice(const OccupancyGrid& grid, const RangeTableOptions& options);
+
 /// How far the table's ranges are from exact casting (in cells of the grid), over rays from
 /// uniform points of free cells in uniform directions.
 struct RangeTableAccuracy {

@@ -5,6 +5,7 @@
 
 #include <iosfwd>
 
+#include "mote/engine/beam_model.hpp"
 #include "mote/maps/occupancy_grid.hpp"
 #include "mote/raycast/range_table.hpp"
 #include "mote/replay/report_json.hpp"
@@ -34,5 +35,13 @@ void print_range_table(std::ostream& out, const RangeTableSummary& s);
 
 /// "range_table": {...} as a member of the current object.
 void write_range_table_json(JsonWriter& json, const RangeTableSummary& s);
+
+/// Where the beam model was asked for a table and casts exactly instead, why: one summary row
+/// naming the lattice the budget gives, its spacing and sigma_hit's. Nothing otherwise.
+void print_beam_casting(std::ostream& out, const BeamCasting& casting, double resolution,
+                        double budget_mb, double sigma_hit);
+
+/// "beam_casting": {"table", "table_asked", "budget_lattice_cells", "max_lattice_cells"}.
+void write_beam_casting_json(JsonWriter& json, const BeamCasting& casting);
 
 }  // namespace mote::replay

@@ -131,6 +131,7 @@ struct ReplayResult {
   double wall_s = 0.0;                    ///< s, wall-clock time of the whole loop
   double read_s = 0.0;                    ///< s of wall_s spent in the log reader's next()
   std::optional<RangeTableSummary> range_table;  ///< the beam model's table (ray_casting: table)
+  std::optional<BeamCasting> beam_casting;       ///< the beam model's table or exact casting
 };
 
 /// Loads the map, log and reference, runs the filter over every scan and measures the result.
