@@ -7,6 +7,15 @@
 
 namespace mote {
 
+int max_table_lattice(double sigma_hit, double resolution) {
+  // The table answers a sensor with the ray of the lattice point, of the 3 x 3 around it, whose
+  // ray passes closest: at most half the spacing from the sensor along either axis, so at most
+  // spacing / sqrt(2) across the ray (the offset along it is corrected). Within sigma_hit:
+  // spacing <= sqrt(2) sigma_hit. (The epsilon keeps exact quotients whole.)
+  return std::max(
+      1, static_cast<int>(std::floor(std::numbers::sqrt2 * sigma_hit / resolution + 1e-9)));
+}
+
 BeamModel::BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
                      const std::optional<RangeTableOptions>& table)
     : params_(params) {
@@ -14,13 +23,7 @@ BeamModel::BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,
     RangeTableOptions options = *table;
     options.unknown_blocks = params.unknown_blocks;
     casting_.table_asked = true;
-    // The table answers a sensor with the ray of the lattice point, of the 3 x 3 around it,
-    // whose ray passes closest: at most half the spacing from the sensor along either axis, so
-    // at most spacing / sqrt(2) across the ray (the offset along it is corrected). Within
-    // sigma_hit: spacing <= sqrt(2) sigma_hit. (The epsilon keeps exact quotients whole.)
-    casting_.max_lattice = std::max(
-        1, static_cast<int>(std::floor(
-               std::numbers::sqrt2 * params.mixture.sigma_hit / grid.resolution() + 1e-9)));
+    casting_.max_lattice = max_table_lattice(params.mixture.sigma_hit, grid.resolution());
     casting_.budget_lattice = range_table_lattice(grid, options);
     casting_.table = casting_.budget_lattice > 0 && casting_.budget_lattice <= casting_.max_lattice;
     if (casting_.table) {

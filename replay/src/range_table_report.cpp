@@ -1,6 +1,7 @@
 #include "mote/replay/range_table_report.hpp"
 
 #include <iomanip>
+#include <numbers>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -79,7 +80,8 @@ void print_beam_casting(std::ostream& out, const BeamCasting& casting, double re
                               : "the range table fits " + budget + " only on a lattice of " +
                                     std::to_string(casting.budget_lattice) + " cells (" +
                                     fixed(casting.budget_lattice * resolution, 2) +
-                                    " m), coarser than sigma_hit (" + fixed(sigma_hit, 2) + " m)";
+                                    " m), coarser than sqrt(2) sigma_hit (" +
+                                    fixed(std::numbers::sqrt2 * sigma_hit, 2) + " m)";
   line(out, "ray casting", "exact: " + why);
 }
 

@@ -90,8 +90,8 @@ TEST(BeamModelWeigh, AddsTheScalarScanLikelihoodOfTheCastRangesToItsRange) {
   EXPECT_TRUE(std::isnan(particles.logw[100]));
 }
 
-// The range table serves the casts only on a lattice no coarser than sigma_hit; where the budget
-// allows only a coarser one (a big map), or none at all, the model casts exactly.
+// The range table serves the casts only on a lattice no coarser than sqrt(2) sigma_hit; where the
+// budget allows only a coarser one (a big map), or none at all, the model casts exactly.
 TEST(BeamModelCasting, TheTableOnlyOnALatticeWithinSigmaHitElseExactCasting) {
   const OccupancyGrid grid = room();  // 10 cm cells: sigma_hit 0.2 m allows a lattice of 2
   const auto model_with = [&](double budget_mb, double sigma_hit) {

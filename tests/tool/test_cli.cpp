@@ -262,11 +262,21 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
   EXPECT_NE(coarse.out.find("64 angles, lattice "), std::string::npos) << coarse.out;
   EXPECT_EQ(coarse.out.find("64 angles, lattice 1 "), std::string::npos) << coarse.out;
   EXPECT_NE(coarse.out.find("% within 1 cell"), std::string::npos) << coarse.out;
+  // Where no lattice fits, or only one coarser than sqrt(2) sigma_hit, the beam model casts
+  // exactly: no table is built, and the output says why.
   const Outcome tiny =
       mote("info --map '" + floorplan().string() + "' --range-table-budget-mb 0.001");
-  EXPECT_EQ(tiny.status, 1) << tiny.out;
-  EXPECT_EQ(lines(tiny.err), 1) << tiny.err;
-  EXPECT_NE(tiny.err.find("needs"), std::string::npos) << tiny.err;
+  EXPECT_EQ(tiny.status, 0) << tiny.err;
+  EXPECT_NE(tiny.out.find("ray casting           exact: no lattice of the range table fits"),
+            std::string::npos)
+      << tiny.out;
+  const Outcome narrow =
+      mote("info --map '" + floorplan().string() +
+           "' --range-table-angles 64 --range-table-budget-mb 3 --sigma-hit 0.01");
+  EXPECT_EQ(narrow.status, 0) << narrow.err;
+  EXPECT_NE(narrow.out.find("coarser than sqrt(2) sigma_hit (0.01 m)"), std::string::npos)
+      << narrow.out;
+  EXPECT_EQ(narrow.out.find("% within 1 cell"), std::string::npos) << narrow.out;
 }
 
 // Issue 19: a table over budget is built on a coarser lattice, report.json says which, and the
@@ -282,8 +292,8 @@ TEST(Cli, ReplayReportsTheCoarserLatticeOfATableOverBudget) {
   EXPECT_LT(json_number(report, "ate_rmse_m"), 0.2);
 }
 
-// Where the budget holds the table only on a lattice coarser than sigma_hit (a big map), the beam
-// model casts exactly, and the summary and report.json say why.
+// Where the budget holds the table only on a lattice coarser than sqrt(2) sigma_hit (a big map),
+// the beam model casts exactly, and the summary and report.json say why.
 TEST(Cli, ReplayCastsExactlyWhereTheTableWouldBeCoarserThanSigmaHit) {
   const fs::path dir = scratch("coarser_than_sigma");
   ASSERT_NO_FATAL_FAILURE(simulate_floorplan(dir, 15, 3));

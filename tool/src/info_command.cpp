@@ -12,11 +12,12 @@
 namespace mote::tool {
 namespace {
 
-constexpr std::array<FlagSpec, 8> kFlags{{
+constexpr std::array<FlagSpec, 9> kFlags{{
     {"map", "MAP.yaml", "instead of a LOG: the map, and the beam model's range table built on it"},
     {"range-table-angles", "N", "with --map: table directions, a multiple of 32 (default 512)"},
     {"range-table-budget-mb", "MB", "with --map: table memory budget (default 256)"},
     {"unknown-free", "", "with --map: unknown cells do not stop rays (default: they do)"},
+    {"sigma-hit", "M", "with --map: the beam model's sigma_hit, which bounds the lattice (0.2)"},
     {"scan-topic", "TOPIC", "ROS bags: the LaserScan topic (default: the only one)"},
     {"odom-topic", "TOPIC", "ROS bags: the Odometry topic (default: the only one, or tf)"},
     {"odom-frame", "FRAME", "ROS bags: odometry frame when odometry comes from tf (default odom)"},
@@ -29,7 +30,9 @@ constexpr std::string_view kAbout =
     "counts per topic and type, the laser (beams, field of view, range limits, mounting pose)\n"
     "and the tf frames. LOG: CARMEN .clf/.log, ROS 1 .bag, rosbag2 folder, .mcap or .db3.\n"
     "With --map: the map's size and cells, and the range table (ray_casting: table) built on\n"
-    "it: layout, memory, build time and its error against exact Embree casting.";
+    "it: layout, memory, build time and its error against exact Embree casting. Where the\n"
+    "budget holds the table only on a lattice coarser than sqrt(2) sigma_hit, the beam model\n"
+    "casts exactly instead, and the table is not built.";
 
 int map_info(const ParsedArgs& args) {
   const std::string path = args.required("map");
@@ -42,8 +45,19 @@ int map_info(const ParsedArgs& args) {
   if (auto mb = args.real("range-table-budget-mb", 1e-6, 1048576.0)) {
     options.memory_budget_bytes = static_cast<std::size_t>(*mb * 1048576.0);
   }
+  const double sigma_hit = args.real("sigma-hit", 1e-6, 1e6).value_or(LocalizerConfig{}.sigma_hit);
   std::cout << "map " << path << "\n  " << grid.width() << " x " << grid.height() << " cells of "
             << grid.resolution() << " m, " << grid.free_cell_count() << " free\n";
+  BeamCasting casting{.table_asked = true,
+                      .budget_lattice = range_table_lattice(grid, options),
+                      .max_lattice = max_table_lattice(sigma_hit, grid.resolution())};
+  casting.table = casting.budget_lattice > 0 && casting.budget_lattice <= casting.max_lattice;
+  if (!casting.table) {
+    replay::print_beam_casting(std::cout, casting, grid.resolution(),
+                               static_cast<double>(options.memory_budget_bytes) / 1048576.0,
+                               sigma_hit);
+    return 0;
+  }
   const RangeTable table(grid, options);
   replay::print_range_table(std::cout, replay::summarize_range_table(grid, table, options));
   return 0;

@@ -40,6 +40,9 @@ struct BeamCasting {
   int max_lattice = 0;
 };
 
+/// BeamCasting::max_lattice for a sigma_hit (m) and a map resolution (m per cell).
+[[nodiscard]] int max_table_lattice(double sigma_hit, double resolution);
+
 /// Weighs particles by sum over beams of log p(z_b | z*_b(x)) (eqs. 6.4-6.11), z* ray-cast with
 /// Embree in 16-ray packets. A max-range reading is weighed at z = z_max by the whole mixture
 /// (eq. 6.12: the z_max point mass plus p_hit and p_short there), so particles that expect a
