@@ -123,7 +123,10 @@ void write_states(JsonWriter& json, const ReplayResult& r) {
     json.end_object();
   };
   json.key("localization_state").begin_object();
-  if (!r.updates.empty()) json.member("final", name_of(r.updates.back().state));
+  if (!r.updates.empty()) {
+    json.member("final", name_of(r.updates.back().state));
+    json.member("final_places", std::uint64_t{r.updates.back().places});
+  }
   shares("share", all);
   if (std::isfinite(from)) shares("share_after_convergence", after);
   json.member("relocalizations", std::uint64_t{relocalizations});
@@ -358,7 +361,13 @@ std::string state_text(const ReplayResult& r) {
   };
   std::string text = pct(LocalizationState::kTracking) + " / " +
                      pct(LocalizationState::kUncertain) + " / " + pct(LocalizationState::kLost);
-  if (!r.updates.empty()) text += std::string(", ends ") + name_of(r.updates.back().state);
+  if (!r.updates.empty()) {
+    const UpdateRecord& last = r.updates.back();
+    text += std::string(", ends ") + name_of(last.state);
+    if (last.state != LocalizationState::kTracking && last.places > 1) {
+      text.append(" between ").append(std::to_string(last.places)).append(" places");
+    }
+  }
   text.append(", ").append(std::to_string(relocalizations)).append(" re-localizations");
   if (held > 0) {
     text.append(", the tracked place held on ").append(std::to_string(held)).append(" updates");

@@ -153,7 +153,15 @@ std::string capped_global_set_text(const ReplayResult& r) {
                 ": %zu particles, %.2f per KLD bin (asked %.1f); raise max_particles",
                 r.global_set.particles, r.global_set.per_bin, r.config.global_particles_per_bin);
   std::string text = "capped at max_particles for ";
-  return text.append(which).append(figures.data());
+  text.append(which).append(figures.data());
+  if (r.global_set.per_bin < 1.0) {
+    // Most bins hold no particle: a place the draw missed (a look-alike copy of the one the
+    // belief settles on included) is found only by a later re-localization.
+    text.append(
+        "; with fewer than one particle per bin most of the map's poses were not drawn, "
+        "so the belief can miss the true place among look-alike ones");
+  }
+  return text;
 }
 
 void write_verdict_json(JsonWriter& json, const RunVerdict& v) {

@@ -218,6 +218,30 @@ TEST(Report, CountsTheHeldUpdatesTheHandOversAndTheLocalSearches) {
   EXPECT_EQ(none.str().find("held on"), std::string::npos) << none.str();
 }
 
+// A run that ends uncertain among several places says how many (a global start on a map of
+// look-alike copies); one that ends tracking, or uncertain on one place, does not.
+TEST(Report, SaysHowManyPlacesAnUncertainEndCovers) {
+  ReplayResult r = fake_result(false);
+  r.updates.back().state = LocalizationState::kUncertain;
+  r.updates.back().places = 3;
+  std::ostringstream three;
+  print_summary(three, r);
+  EXPECT_NE(three.str().find(", ends uncertain between 3 places,"), std::string::npos)
+      << three.str();
+  std::ostringstream json;
+  write_report_json(json, r);
+  EXPECT_NE(json.str().find("\"final_places\": 3"), std::string::npos) << json.str();
+  r.updates.back().places = 1;
+  std::ostringstream one;
+  print_summary(one, r);
+  EXPECT_EQ(one.str().find(" places,"), std::string::npos) << one.str();
+  r.updates.back().state = LocalizationState::kTracking;
+  r.updates.back().places = 3;
+  std::ostringstream tracking;
+  print_summary(tracking, r);
+  EXPECT_EQ(tracking.str().find("between"), std::string::npos) << tracking.str();
+}
+
 TEST(Report, WithoutReferenceHasNoAccuracyKeys) {
   std::ostringstream out;
   write_report_json(out, fake_result(false));

@@ -104,6 +104,14 @@ TEST(Verdict, TheCappedGlobalSetIsReportedOnlyForTheDrawsThatHappened) {
                 .find("the global start and 2 "
                       "re-localizations:"),
             std::string::npos);
+  // Below one particle per bin the text says what that means for the answer.
+  ReplayResult sparse = capped_run(true, 0);
+  sparse.global_set.per_bin = 0.07;
+  EXPECT_EQ(capped_global_set_text(sparse),
+            "capped at max_particles for the global start: 500000 particles, 0.07 per KLD bin "
+            "(asked 6.0); raise max_particles; with fewer than one particle per bin most of the "
+            "map's poses were not drawn, so the belief can miss the true place among look-alike "
+            "ones");
   ReplayResult not_capped = capped_run(true, 2);
   not_capped.global_set.capped = false;
   EXPECT_EQ(capped_global_set_text(not_capped), "");
