@@ -79,7 +79,9 @@ Node::Impl::Impl(NodeOptions opts)
     detail::check_dds(dds_waitset_attach(waitset, r, r), "attaching a reader");
   }
   if (!options.map_file.empty()) {
-    prepare_map(load_map(options.map_file), options.map_file.string());
+    // Loaded here, so that a file that does not load fails the node's start with its error.
+    auto grid = std::make_shared<OccupancyGrid>(load_map(options.map_file));
+    queue_map({[grid] { return std::move(*grid); }, options.map_file.string()});
   }
 }
 

@@ -30,7 +30,7 @@ std::optional<StartPose> Node::Impl::start_pose_for_new_map() const {
     // A map that replaces another keeps a belief that knew where it was.
     if (counts.maps > 0 && counts.state == LocalizationState::kTracking &&
         !options.always_reset_initial_pose) {
-      return StartPose{counts.pose, options.initial_covariance, "the last pose"};
+      return StartPose{counts.pose, options.initial_covariance, kLastPose};
     }
     if (counts.maps > 0) return std::nullopt;
   }
@@ -82,9 +82,34 @@ void Node::Impl::filter_loop() {
 }
 
 void Node::Impl::swap_in(PreparedFilter prepared) {
+  if (prepared.at_last_pose) start_at_last_pose(*prepared.filter);
   filter = std::move(prepared.filter);
   have_map_to_odom = false;
   if (deferred_start) start_at(*std::exchange(deferred_start, std::nullopt));
+}
+
+void Node::Impl::start_at_last_pose(Localizer& next) const {
+  // Where the robot is now, not where it was when the map arrived: preparing a big map takes
+  // seconds, and the old filter kept tracking meanwhile.
+  LocalizationState state = LocalizationState::kLost;
+  Pose2 pose;
+  {
+    const std::lock_guard lock(mutex);
+    state = counts.state;
+    pose = counts.pose;
+  }
+  if (state == LocalizationState::kTracking) {
+    next.initialize(pose, options.initial_covariance);
+    warnings.notice("new map: filter started at the last pose, x " + std::to_string(pose.x) +
+                    " y " + std::to_string(pose.y) + " yaw " + std::to_string(pose.theta));
+    return;
+  }
+  next.initialize_global();
+  warnings.notice(
+      "new map: the filter stopped tracking while the map was prepared, started "
+      "globally (" +
+      std::to_string(next.particles().size()) + " particles)");
+  warn_if_global_set_capped(next);
 }
 
 void Node::Impl::start_at(const StartPose& start) {

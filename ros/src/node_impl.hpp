@@ -4,11 +4,13 @@
 /// feeds the transforms and scans to the scan pairing (logs' ScanSync, the same pairing
 /// `mote replay` reads bags with) and hands each ready scan to the filter thread; a scan handed
 /// over while one waits replaces it. A map is prepared into a new Localizer on a thread of its
-/// own and swapped in between updates. The filter thread updates and publishes.
+/// own (the newest one waiting, one at a time: the receive thread never waits for it) and
+/// swapped in between updates. The filter thread updates and publishes.
 
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -33,11 +35,24 @@ struct ReadyScan {
   Clock::time_point ready;    ///< paired with its odometry and handed to the filter
 };
 
+/// A map waiting to be prepared: how to get its grid (a message's decoding runs on the map
+/// builder's thread, not the receive thread) and where it came from.
+struct MapJob {
+  std::function<OccupancyGrid()> grid;
+  std::string source;
+};
+
 /// A Localizer prepared for a new map, with how it was initialized.
 struct PreparedFilter {
   std::unique_ptr<Localizer> filter;
   std::string how;  ///< "globally", "at the initial pose", ...
+  /// Not initialized yet: the filter thread starts it at the pose of the moment it swaps it in
+  /// (a big map takes seconds to prepare, and the robot moves meanwhile).
+  bool at_last_pose = false;
 };
+
+/// StartPose::source of a map that replaces another while the filter tracks.
+inline constexpr const char* kLastPose = "the last pose";
 
 /// A start pose from /initialpose, the params or the pose file.
 struct StartPose {
@@ -59,12 +74,19 @@ struct Node::Impl {
   void take_initial_poses();
   void hand_over_ready_scans();
   void warn_about_silence();
-  void prepare_map(OccupancyGrid grid, std::string source);
+  void queue_map(MapJob job);
+  [[nodiscard]] bool map_in_preparation() const;
   [[nodiscard]] std::uint64_t counts_maps() const;
+
+  // The map builder's thread (node_maps.cpp): prepares the newest queued map at a time.
+  void build_maps();
+  void build_filter(const MapJob& job);
+  void warn_if_global_set_capped(const Localizer& prepared) const;
 
   // The filter thread (node_filter.cpp).
   void filter_loop();
   void swap_in(PreparedFilter prepared);
+  void start_at_last_pose(Localizer& next) const;
   void start_at(const StartPose& start);
   void process(const ReadyScan& scan);
   void record_latency(const ReadyScan& scan);
@@ -98,6 +120,8 @@ struct Node::Impl {
   std::optional<ReadyScan> pending_scan;
   std::optional<PreparedFilter> pending_filter;
   std::optional<StartPose> pending_start;
+  std::optional<MapJob> queued_map;  // the newest map not yet being prepared
+  bool building_map = false;         // the map builder's thread is running
   bool global_requested = false;
   bool nomotion_requested = false;
   bool stopping = false;

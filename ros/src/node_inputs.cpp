@@ -101,23 +101,16 @@ void Node::Impl::take_scans(const detail::RawReader& reader) {
 void Node::Impl::take_maps() {
   std::vector<std::string> maps = map_reader.take();
   if (maps.empty()) return;
-  if (options.first_map_only && (map_builder.joinable() || counts_maps() > 0)) {
+  if (options.first_map_only && (map_in_preparation() || counts_maps() > 0)) {
     warnings.warn("first map only", "a map on " + map_reader.topic() +
                                         " ignored: first_map_only keeps the first one");
     return;
   }
-  try {  // only the newest map matters
-    MapMessage m = decode_occupancy_grid(maps.back(), map_reader.topic());
-    prepare_map(std::move(m.grid), map_reader.topic());
-  } catch (const std::exception& e) {
-    {
-      const std::lock_guard lock(mutex);
-      ++counts.malformed;
-    }
-    warnings.warn(
-        "malformed " + map_reader.topic(),
-        "map on " + map_reader.topic() + " refused, keeping the one in use: " + what_of(e));
-  }
+  // Only the newest map matters; it is decoded where it is prepared, off this thread.
+  queue_map({[this, bytes = std::move(maps.back())] {
+               return decode_occupancy_grid(bytes, map_reader.topic()).grid;
+             },
+             map_reader.topic()});
 }
 
 void Node::Impl::take_initial_poses() {
@@ -190,9 +183,9 @@ void Node::Impl::warn_about_silence() {
   bool have_filter = false;
   {
     const std::lock_guard lock(mutex);
-    have_filter = counts.maps > 0 || pending_filter.has_value();
+    have_filter = counts.maps > 0 || pending_filter.has_value() || building_map;
   }
-  if (!have_filter && !map_builder.joinable()) {
+  if (!have_filter) {
     warnings.warn("no map", "no map yet: nothing on " + map_reader.topic() +
                                 " (publishers matched: " + std::to_string(map_reader.matched()) +
                                 ")");
@@ -205,42 +198,6 @@ void Node::Impl::warn_about_silence() {
     }
     warnings.warn("no scans", "no scans arrive on " + topics);
   }
-}
-
-void Node::Impl::prepare_map(OccupancyGrid grid, std::string source) {
-  if (map_builder.joinable()) map_builder.join();
-  const std::optional<StartPose> start = start_pose_for_new_map();
-  map_builder = std::thread([this, grid = std::move(grid), source = std::move(source), start] {
-    try {
-      PreparedFilter p{std::make_unique<Localizer>(grid, options.config), ""};
-      if (start) {
-        p.filter->initialize(start->pose, start->covariance);
-        p.how = "at " + start->source;
-      } else {
-        p.filter->initialize_global();
-        p.how = "globally (" + std::to_string(p.filter->particles().size()) + " particles)";
-        if (const GlobalSetSize g = p.filter->global_set(); g.capped) {
-          warnings.warn("global set capped",
-                        "the global set is capped at max_particles: " +
-                            std::to_string(g.particles) + " particles, " +
-                            std::to_string(g.per_bin) + " per KLD bin of free space (asked " +
-                            std::to_string(options.config.global_particles_per_bin) +
-                            "): a global start may settle at a look-alike place; give a start "
-                            "pose (/initialpose, set_initial_pose) or raise max_particles");
-        }
-      }
-      warnings.notice("map from " + source + ": " + std::to_string(grid.width()) + " x " +
-                      std::to_string(grid.height()) + " cells; filter started " + p.how);
-      {
-        const std::lock_guard lock(mutex);
-        pending_filter = std::move(p);
-        ++counts.maps;
-      }
-      wake_filter.notify_all();
-    } catch (const std::exception& e) {
-      warnings.warn("map refused", "map from " + source + " refused: " + what_of(e));
-    }
-  });
 }
 
 }  // namespace mote::ros

@@ -7,6 +7,7 @@
 #include <limits>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "dds_endpoints.hpp"
@@ -73,6 +74,10 @@ struct Lines {
   [[nodiscard]] bool has(const std::string& words) const {
     const std::lock_guard lock(mutex);
     return text.find(words) != std::string::npos;
+  }
+  [[nodiscard]] std::string copy() const {
+    const std::lock_guard lock(mutex);
+    return text;
   }
   mutable std::mutex mutex;
   std::string text;
@@ -201,6 +206,52 @@ TEST(Node, FirstMapOnlyKeepsTheFirstMapAndSaysSo) {
   ASSERT_TRUE(eventually([&] { return lines.has("first_map_only keeps the first one"); }))
       << lines.text;
   EXPECT_EQ(node.counters().maps, 1U);
+}
+
+// A map whose preparation takes a while: 7000 x 7000 cells of 5 cm, walls on the border.
+OccupancyGrid big_room() {
+  const int side = 7000;
+  std::vector<CellState> cells(static_cast<std::size_t>(side) * side, CellState::kFree);
+  for (int k = 0; k < side; ++k) {
+    for (const std::size_t cell : {static_cast<std::size_t>(k), static_cast<std::size_t>(k) * side,
+                                   static_cast<std::size_t>(side - 1) * side + k,
+                                   static_cast<std::size_t>(k) * side + side - 1}) {
+      cells[cell] = CellState::kOccupied;
+    }
+  }
+  return {side, side, 0.05, Pose2{}, std::move(cells)};
+}
+
+// A map that arrives while another is prepared waits for the map builder, and the receive
+// thread goes on taking scans meanwhile (it used to wait for the builder with it); then the
+// newer map is prepared and swapped in.
+TEST(Node, AMapArrivingWhileAnotherIsPreparedWaitsAndTheScansGoOn) {
+  const int domain = use_loopback_domain();
+  Lines lines;
+  Node node(options(domain, lines));
+  const Robot robot(domain);
+  robot.mount_laser();
+  ASSERT_TRUE(eventually([&] { return robot.map.matched() == 1 && robot.scan.matched() == 1; }));
+  robot.map.write(encode_occupancy_grid(Header{to_stamp(0.0), "map"}, big_room()));
+  std::this_thread::sleep_for(100ms);  // taken: the big map is being prepared (0.7 s in Release)
+  ASSERT_EQ(node.counters().maps, 0U) << "the big map was ready too soon for this test";
+  robot.map.write(encode_occupancy_grid(Header{to_stamp(0.1), "map"}, load_map(kFloorplan)));
+  double t = 0.0;
+  std::uint64_t scans_before_any_map = 0;
+  drive_until(
+      robot, node,
+      [&](const NodeCounters& c) {
+        if (c.maps == 0) scans_before_any_map = c.scans_received;
+        return c.maps == 2 && c.updates >= 1;
+      },
+      t);
+  EXPECT_GE(scans_before_any_map, 3U) << "no scan was taken while the big map was prepared";
+  const std::string said = lines.copy();
+  const std::size_t big = said.find("map from /map: 7000 x 7000 cells");
+  ASSERT_NE(big, std::string::npos) << said;
+  EXPECT_NE(said.find("map from /map: ", big + 1), std::string::npos)
+      << "the second map was not prepared after the first\n"
+      << said;
 }
 
 TEST(Node, ASecondLaserOnATopicOfItsOwnUpdatesWithItsOwnMounting) {

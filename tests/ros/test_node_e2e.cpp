@@ -11,6 +11,7 @@
 #include "cli_test_util.hpp"
 #include "dds_endpoints.hpp"
 #include "loopback_dds.hpp"
+#include "mote/maps/map_loader.hpp"
 #include "mote/ros/messages.hpp"
 #include "mote_test/data.hpp"
 #include "node_process.hpp"
@@ -146,8 +147,9 @@ std::vector<std::pair<double, Pose2>> tum_poses(const std::filesystem::path& pat
   return poses;
 }
 
-// The map goes out before the node starts (transient local: the node gets it late), and an
-// /initialpose arrives mid-run at the pose replay had there: the node restarts there and ends
+// The map goes out before the node starts (transient local: the node gets it late), an
+// /initialpose arrives mid-run at the pose replay had there, and later the map again: the node
+// restarts at the initial pose, then swaps the new map in at its pose of that moment, and ends
 // where replay ends.
 TEST(NodeEndToEnd, TakesAMapPublishedBeforeItStartedAndAnInitialPoseMidRun) {
   MOTE_REQUIRE_DATA(bag, "ros2/mac_take2");
@@ -174,11 +176,17 @@ TEST(NodeEndToEnd, TakesAMapPublishedBeforeItStartedAndAnInitialPoseMidRun) {
                                "geometry_msgs/msg/PoseWithCovarianceStamped", kInitialPoseQos);
   RawReader pose_now(operator_console, "/amcl_pose", "geometry_msgs/msg/PoseWithCovarianceStamped",
                      kAmclPoseQos);
+  const RawWriter map_again(operator_console, "/map", "nav_msgs/msg/OccupancyGrid", kMapQos);
   bool sent = false;
+  bool map_sent = false;
   const auto end = std::chrono::steady_clock::now() + 120s;
   while (play.wait(20ms) < 0 && std::chrono::steady_clock::now() < end) {
     for (const std::string& m : pose_now.take()) {
       const double t = logs::detail::decode_pose_cdr(m).stamp;
+      if (sent && !map_sent && t >= replayed[replayed.size() * 3 / 4].first) {
+        map_again.write(encode_occupancy_grid(Header{to_stamp(t), "map"}, load_map(map)));
+        map_sent = true;
+      }
       if (sent || t < replayed[replayed.size() / 2].first) continue;
       const Pose2 p = replayed[replayed.size() / 2].second;  // close to t: the robot is slow
       PoseWithCovarianceStamped start{.header = {to_stamp(t), "map"}, .pose = p};
@@ -194,7 +202,11 @@ TEST(NodeEndToEnd, TakesAMapPublishedBeforeItStartedAndAnInitialPoseMidRun) {
   const std::string json = slurp(stats);
   std::cout << "node: " << json;
   EXPECT_TRUE(sent);
-  EXPECT_EQ(json_number(json, "maps"), 1) << slurp(dir / "node.log");
+  EXPECT_TRUE(map_sent);
+  EXPECT_EQ(json_number(json, "maps"), 2) << slurp(dir / "node.log");
+  EXPECT_NE(slurp(dir / "node.log").find("new map: filter started at the last pose"),
+            std::string::npos)
+      << slurp(dir / "node.log");
   EXPECT_EQ(json_number(json, "initial_poses"), 1) << slurp(dir / "node.log");
   EXPECT_NE(json.find("\"state\": \"tracking\""), std::string::npos) << json;
   const Pose2 last = replayed.back().second;
