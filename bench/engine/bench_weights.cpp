@@ -54,10 +54,11 @@ void BM_Weights_NormalizeNaive(benchmark::State& state) {
   set_particle_rate(state, n);
 }
 
-void BM_Kld_CountBins(benchmark::State& state) {
+// Counts the bins of n random particles in a 40 m square, in the bins of `region`.
+void count_bins(benchmark::State& state, const Bounds2& region) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const ParticleStore store = random_store(n);
-  KldBins bins({-20.0, -20.0, 20.0, 20.0}, 0.5, 0.5, 10.0 * 3.14159265 / 180);
+  KldBins bins(region, 0.5, 0.5, 10.0 * 3.14159265 / 180);
   const Executor ex(static_cast<int>(state.range(1)));
   const KldConfig config;
   ex([&] {
@@ -66,18 +67,12 @@ void BM_Kld_CountBins(benchmark::State& state) {
   set_particle_rate(state, n);
 }
 
-// The same particles (a 40 m square) counted in the bins of a 490 m x 345 m map (the Intel map
-// tiled 12 x 9): the count's cost follows the particles, not the map's area.
+void BM_Kld_CountBins(benchmark::State& state) { count_bins(state, {-20.0, -20.0, 20.0, 20.0}); }
+
+// The same particles in the bins of a 490 m x 345 m map (the Intel map tiled 12 x 9): the
+// count's cost follows the particles, not the map's area.
 void BM_Kld_CountBinsBigMap(benchmark::State& state) {
-  const auto n = static_cast<std::size_t>(state.range(0));
-  const ParticleStore store = random_store(n);
-  KldBins bins({-20.0, -25.0, 470.0, 320.0}, 0.5, 0.5, 10.0 * 3.14159265 / 180);
-  const Executor ex(static_cast<int>(state.range(1)));
-  const KldConfig config;
-  ex([&] {
-    for (auto _ : state) benchmark::DoNotOptimize(kld_sample_count(store.view(), bins, config));
-  });
-  set_particle_rate(state, n);
+  count_bins(state, {-20.0, -25.0, 470.0, 320.0});
 }
 
 void BM_Kld_CountBinsHashSet(benchmark::State& state) {

@@ -80,7 +80,8 @@ struct Node::Impl {
 
   // The map builder's thread (node_maps.cpp): prepares the newest queued map at a time.
   void build_maps();
-  void build_filter(const MapJob& job);
+  [[nodiscard]] std::optional<OccupancyGrid> grid_of(const MapJob& job);
+  void build_filter(const OccupancyGrid& grid, const std::string& source);
   void warn_if_global_set_capped(const Localizer& prepared) const;
 
   // The filter thread (node_filter.cpp).
@@ -120,8 +121,8 @@ struct Node::Impl {
   std::optional<ReadyScan> pending_scan;
   std::optional<PreparedFilter> pending_filter;
   std::optional<StartPose> pending_start;
-  std::optional<MapJob> queued_map;  // the newest map not yet being prepared
-  bool building_map = false;         // the map builder's thread is running
+  std::vector<MapJob> queued_maps;  // maps not yet prepared, oldest first
+  bool building_map = false;        // the map builder's thread is running
   bool global_requested = false;
   bool nomotion_requested = false;
   bool stopping = false;

@@ -5,21 +5,32 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "node_impl.hpp"
 
 namespace mote::ros {
 
+namespace {
+
+// Maps waiting at most: the newest that decodes is prepared and replaces the older ones, which a
+// malformed newest one must not (a map refused would leave the node with none); a burst of
+// garbage on /map keeps the newest few.
+constexpr std::size_t kMaxWaitingMaps = 4;
+
+}  // namespace
+
 bool Node::Impl::map_in_preparation() const {
   const std::lock_guard lock(mutex);
-  return building_map || queued_map.has_value();
+  return building_map || !queued_maps.empty();
 }
 
 void Node::Impl::queue_map(MapJob job) {
   bool start_builder = false;
   {
     const std::lock_guard lock(mutex);
-    queued_map = std::move(job);  // replaces a map still waiting: the newest one matters
+    queued_maps.push_back(std::move(job));
+    if (queued_maps.size() > kMaxWaitingMaps) queued_maps.erase(queued_maps.begin());
     start_builder = !std::exchange(building_map, true);
   }
   if (!start_builder) return;  // the running builder takes it after its current map
@@ -30,23 +41,28 @@ void Node::Impl::queue_map(MapJob job) {
 
 void Node::Impl::build_maps() {
   for (;;) {
-    MapJob job;
+    std::vector<MapJob> jobs;
     {
       const std::lock_guard lock(mutex);
-      if (stopping || !queued_map) {
+      if (stopping || queued_maps.empty()) {
         building_map = false;
         return;
       }
-      job = std::move(*std::exchange(queued_map, std::nullopt));
+      jobs.swap(queued_maps);
     }
-    build_filter(job);
+    // The newest map that decodes; the older ones it replaces are never decoded.
+    for (auto job = jobs.rbegin(); job != jobs.rend(); ++job) {
+      if (const std::optional<OccupancyGrid> grid = grid_of(*job)) {
+        build_filter(*grid, job->source);
+        break;
+      }
+    }
   }
 }
 
-void Node::Impl::build_filter(const MapJob& job) {
-  std::optional<OccupancyGrid> grid;
+std::optional<OccupancyGrid> Node::Impl::grid_of(const MapJob& job) {
   try {
-    grid.emplace(job.grid());
+    return job.grid();
   } catch (const std::exception& e) {
     {
       const std::lock_guard lock(mutex);
@@ -54,11 +70,14 @@ void Node::Impl::build_filter(const MapJob& job) {
     }
     warnings.warn("malformed " + job.source,
                   "map on " + job.source + " refused, keeping the one in use: " + e.what());
-    return;
+    return std::nullopt;
   }
+}
+
+void Node::Impl::build_filter(const OccupancyGrid& grid, const std::string& source) {
   try {
     const std::optional<StartPose> start = start_pose_for_new_map();
-    PreparedFilter p{std::make_unique<Localizer>(*grid, options.config), "", false};
+    PreparedFilter p{std::make_unique<Localizer>(grid, options.config), "", false};
     if (start && start->source == kLastPose) {
       p.at_last_pose = true;  // the filter thread starts it where the robot is when it swaps
     } else if (start) {
@@ -69,8 +88,8 @@ void Node::Impl::build_filter(const MapJob& job) {
       p.how = "globally (" + std::to_string(p.filter->particles().size()) + " particles)";
       warn_if_global_set_capped(*p.filter);
     }
-    warnings.notice("map from " + job.source + ": " + std::to_string(grid->width()) + " x " +
-                    std::to_string(grid->height()) + " cells; filter started " +
+    warnings.notice("map from " + source + ": " + std::to_string(grid.width()) + " x " +
+                    std::to_string(grid.height()) + " cells; filter started " +
                     (p.at_last_pose ? "at " + std::string(kLastPose) + " when swapped in" : p.how));
     {
       const std::lock_guard lock(mutex);
@@ -79,7 +98,7 @@ void Node::Impl::build_filter(const MapJob& job) {
     }
     wake_filter.notify_all();
   } catch (const std::exception& e) {
-    warnings.warn("map refused", "map from " + job.source + " refused: " + e.what());
+    warnings.warn("map refused", "map from " + source + " refused: " + e.what());
   }
 }
 
