@@ -277,6 +277,11 @@ TEST(Cli, InfoMapReportsTheRangeTable) {
   EXPECT_NE(narrow.out.find("coarser than sqrt(2) sigma_hit (0.01 m)"), std::string::npos)
       << narrow.out;
   EXPECT_EQ(narrow.out.find("% within 1 cell"), std::string::npos) << narrow.out;
+  // Unknown cells open to rays by default, as the beam model runs; --unknown-blocks as nav2's.
+  const Outcome blocks =
+      mote("info --map '" + floorplan().string() + "' --range-table-angles 64 --unknown-blocks");
+  EXPECT_EQ(blocks.status, 0) << blocks.err;
+  EXPECT_NE(blocks.out.find("64 angles, lattice 1"), std::string::npos) << blocks.out;
 }
 
 // Issue 19: a table over budget is built on a coarser lattice, report.json says which, and the

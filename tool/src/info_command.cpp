@@ -16,7 +16,9 @@ constexpr std::array<FlagSpec, 9> kFlags{{
     {"map", "MAP.yaml", "instead of a LOG: the map, and the beam model's range table built on it"},
     {"range-table-angles", "N", "with --map: table directions, a multiple of 32 (default 512)"},
     {"range-table-budget-mb", "MB", "with --map: table memory budget (default 256)"},
-    {"unknown-free", "", "with --map: unknown cells do not stop rays (default: they do)"},
+    {"unknown-blocks", "",
+     "with --map: unknown cells stop rays, as with --nav2-defaults (default: "
+     "they do not, as the beam model runs with no flags)"},
     {"sigma-hit", "M", "with --map: the beam model's sigma_hit, which bounds the lattice (0.2)"},
     {"scan-topic", "TOPIC", "ROS bags: the LaserScan topic (default: the only one)"},
     {"odom-topic", "TOPIC", "ROS bags: the Odometry topic (default: the only one, or tf)"},
@@ -38,7 +40,7 @@ int map_info(const ParsedArgs& args) {
   const std::string path = args.required("map");
   const OccupancyGrid grid = load_map(path);
   RangeTableOptions options;
-  options.unknown_blocks = !args.has("unknown-free");
+  options.unknown_blocks = args.has("unknown-blocks") || LocalizerConfig{}.unknown_cells_block_rays;
   if (auto n = args.integer("range-table-angles", 32, 1 << 16)) {
     options.angles = static_cast<int>(*n);
   }
