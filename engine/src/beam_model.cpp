@@ -12,8 +12,9 @@ int max_table_lattice(double sigma_hit, double resolution) {
   // ray passes closest: at most half the spacing from the sensor along either axis, so at most
   // spacing / sqrt(2) across the ray (the offset along it is corrected). Within sigma_hit:
   // spacing <= sqrt(2) sigma_hit. (The epsilon keeps exact quotients whole.)
-  return std::max(
-      1, static_cast<int>(std::floor(std::numbers::sqrt2 * sigma_hit / resolution + 1e-9)));
+  const double cells = std::numbers::sqrt2 * sigma_hit / resolution + 1e-9;
+  if (!(cells >= 1.0)) return 1;  // also NaN: a table on every cell or none
+  return static_cast<int>(std::min(cells, 1e6));
 }
 
 BeamModel::BeamModel(const OccupancyGrid& grid, const BeamModelParams& params,

@@ -119,6 +119,13 @@ TEST(BeamModelCasting, TheTableOnlyOnALatticeWithinSigmaHitElseExactCasting) {
   ASSERT_NE(wide_noise.range_table(), nullptr);
   EXPECT_EQ(wide_noise.range_table()->stats().lattice, coarse.casting().budget_lattice);
 
+  // The bound itself: floor(sqrt(2) sigma_hit / resolution), at least 1 for any input.
+  EXPECT_EQ(max_table_lattice(0.2, 0.05), 5);
+  EXPECT_EQ(max_table_lattice(0.2, 0.03), 9);
+  EXPECT_EQ(max_table_lattice(0.01, 0.05), 1);
+  EXPECT_EQ(max_table_lattice(std::numeric_limits<double>::quiet_NaN(), 0.05), 1);
+  EXPECT_EQ(max_table_lattice(1e300, 0.05), 1000000);
+
   const BeamModel none = model_with(0.001, 0.2);  // no lattice fits: exact casting, no error
   EXPECT_EQ(none.casting().budget_lattice, 0);
   EXPECT_FALSE(none.casting().table);

@@ -210,15 +210,14 @@ TEST(Node, FirstMapOnlyKeepsTheFirstMapAndSaysSo) {
 
 // A map whose preparation takes a while: 7000 x 7000 cells of 5 cm, walls on the border.
 OccupancyGrid big_room() {
-  const int side = 7000;
-  std::vector<CellState> cells(static_cast<std::size_t>(side) * side, CellState::kFree);
-  for (int k = 0; k < side; ++k) {
-    for (const std::size_t cell : {static_cast<std::size_t>(k), static_cast<std::size_t>(k) * side,
-                                   static_cast<std::size_t>(side - 1) * side + k,
-                                   static_cast<std::size_t>(k) * side + side - 1}) {
+  constexpr std::size_t kSide = 7000;
+  std::vector<CellState> cells(kSide * kSide, CellState::kFree);
+  for (std::size_t k = 0; k < kSide; ++k) {
+    for (const std::size_t cell : {k, k * kSide, (kSide - 1) * kSide + k, k * kSide + kSide - 1}) {
       cells[cell] = CellState::kOccupied;
     }
   }
+  constexpr int side = static_cast<int>(kSide);
   return {side, side, 0.05, Pose2{}, std::move(cells)};
 }
 
