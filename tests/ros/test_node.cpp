@@ -94,12 +94,14 @@ NodeOptions options(int domain, Lines& lines) {
 
 void drive_until(const Robot& robot, Node& node,
                  const std::function<bool(const NodeCounters&)>& done, double& t,
-                 const std::string& frame = "laser") {
-  EXPECT_TRUE(eventually([&] {
-    robot.drive(t += 0.1, frame);
-    std::this_thread::sleep_for(5ms);
-    return done(node.counters());
-  }));
+                 const std::string& frame = "laser", std::chrono::milliseconds timeout = 20s) {
+  EXPECT_TRUE(eventually(
+      [&] {
+        robot.drive(t += 0.1, frame);
+        std::this_thread::sleep_for(5ms);
+        return done(node.counters());
+      },
+      timeout));
 }
 
 TEST(Node, MalformedSamplesOnEveryTopicAreCountedAndTheNodeGoesOn) {
@@ -243,7 +245,8 @@ TEST(Node, AMapArrivingWhileAnotherIsPreparedWaitsAndTheScansGoOn) {
         if (c.maps == 0) scans_before_any_map = c.scans_received;
         return c.maps == 2 && c.updates >= 1;
       },
-      t);
+      // 0.7 s for the big map in Release; under AddressSanitizer it took over 20 s.
+      t, "laser", 180s);
   EXPECT_GE(scans_before_any_map, 3U) << "no scan was taken while the big map was prepared";
   const std::string said = lines.copy();
   const std::size_t big = said.find("map from /map: 7000 x 7000 cells");
