@@ -101,6 +101,10 @@ void Node::Impl::take_scans(const detail::RawReader& reader) {
 void Node::Impl::take_maps() {
   std::vector<std::string> maps = map_reader.take();
   if (maps.empty()) return;
+  {
+    const std::lock_guard lock(mutex);
+    counts.map_messages += maps.size();
+  }
   if (options.first_map_only && (map_in_preparation() || counts_maps() > 0)) {
     warnings.warn("first map only", "a map on " + map_reader.topic() +
                                         " ignored: first_map_only keeps the first one");

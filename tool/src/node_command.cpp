@@ -60,10 +60,11 @@ void write_stats(const std::string& path, const ros::NodeCounters& c) {
       << ", \"dropped_no_transform\": " << c.dropped_no_transform
       << ", \"dropped_no_odometry\": " << c.dropped_no_odometry
       << ", \"dropped_no_map\": " << c.dropped_no_map << ", \"malformed\": " << c.malformed
-      << ", \"maps\": " << c.maps << ", \"initial_poses\": " << c.initial_poses
-      << ", \"published\": " << c.published << ", \"state\": \"" << name_of(c.state)
-      << "\", \"misfit\": " << c.misfit << ", \"x\": " << c.pose.x << ", \"y\": " << c.pose.y
-      << ", \"yaw\": " << c.pose.theta << ", \"stamp\": " << std::fixed << c.pose_stamp
+      << ", \"map_messages\": " << c.map_messages << ", \"maps\": " << c.maps
+      << ", \"initial_poses\": " << c.initial_poses << ", \"published\": " << c.published
+      << ", \"state\": \"" << name_of(c.state) << "\", \"misfit\": " << c.misfit
+      << ", \"x\": " << c.pose.x << ", \"y\": " << c.pose.y << ", \"yaw\": " << c.pose.theta
+      << ", \"stamp\": " << std::fixed << c.pose_stamp
       << ", \"latency_p50_ms\": " << c.latency_p50_ms
       << ", \"latency_p99_ms\": " << c.latency_p99_ms
       << ", \"processing_p50_ms\": " << c.processing_p50_ms

@@ -65,9 +65,11 @@ struct NodeCounters {
   std::uint64_t dropped_no_odometry = 0;   ///< no odometry at the scan's stamp in time
   std::uint64_t dropped_no_map = 0;        ///< scans before any map arrived
   std::uint64_t malformed = 0;             ///< samples that did not decode, on any topic
-  std::uint64_t maps = 0;                  ///< maps taken (file or topic)
-  std::uint64_t initial_poses = 0;         ///< /initialpose messages taken
-  std::uint64_t published = 0;             ///< map -> odom transforms published
+  std::uint64_t map_messages = 0;   ///< samples taken off the map topic (each prepared unless a
+                                    ///< newer one replaces it while it waits, or it is malformed)
+  std::uint64_t maps = 0;           ///< maps prepared and handed to the filter (file or topic)
+  std::uint64_t initial_poses = 0;  ///< /initialpose messages taken
+  std::uint64_t published = 0;      ///< map -> odom transforms published
   LocalizationState state = LocalizationState::kUncertain;
   double misfit = 0.0;
   Pose2 pose;               ///< the last reported pose (map frame)
