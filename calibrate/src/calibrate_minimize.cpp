@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 namespace mote::calibrate::detail {
@@ -38,9 +39,13 @@ Point lerp(const Point& a, const Point& b, double t) {  // a + t (b - a)
   return p;
 }
 
+// Whether every vertex is within the parameters' tolerances of the best one (never, when no
+// parameter has a tolerance).
+using Collapsed = std::function<bool(const Simplex&, std::size_t best)>;
+
 // One run of Nelder-Mead from `start` with edge length `step`, at most `budget` evaluations.
 Point run(const std::function<double(const Point&)>& g, const Point& start, double step, int budget,
-          int& used) {
+          int& used, const Collapsed& collapsed) {
   const std::size_t n = start.size();
   Simplex s;
   s.points.push_back(start);
@@ -59,6 +64,7 @@ Point run(const std::function<double(const Point&)>& g, const Point& start, doub
     const std::size_t best = order.front(), worst = order.back(), second = order[n - 1];
     if (std::abs(s.values[worst] - s.values[best]) < 1e-11 * (1.0 + std::abs(s.values[best])))
       break;
+    if (collapsed(s, best)) break;
     Point centroid(n, 0.0);
     for (std::size_t k = 0; k < n; ++k) {
       for (std::size_t i = 0; i < n; ++i)
@@ -107,6 +113,21 @@ std::vector<double> minimize(const std::function<double(const std::vector<double
     return p;
   };
   auto g = [&](const Point& u) { return f(params_of(u)); };
+  const bool any_tolerance =
+      std::any_of(params.begin(), params.end(), [](const Bounded& b) { return b.tolerance > 0.0; });
+  auto within_tolerance = [&](const Point& a, const Point& b) {
+    if (!any_tolerance) return false;
+    const Point pa = params_of(a), pb = params_of(b);
+    for (std::size_t i = 0; i < pa.size(); ++i) {
+      if (params[i].tolerance > 0.0 && std::abs(pa[i] - pb[i]) >= params[i].tolerance) return false;
+    }
+    return true;
+  };
+  const Collapsed collapsed = [&](const Simplex& s, std::size_t best) {
+    return std::all_of(s.points.begin(), s.points.end(), [&](const Point& vertex) {
+      return within_tolerance(vertex, s.points[best]);
+    });
+  };
   Point u(params.size());
   for (std::size_t i = 0; i < params.size(); ++i) u[i] = to_search(params[i]);
   evaluations = 0;
@@ -115,9 +136,10 @@ std::vector<double> minimize(const std::function<double(const std::vector<double
   double best = g(u);
   for (int restart = 0; restart < 12 && evaluations < max_evaluations; ++restart) {
     const double step = restart == 0 ? 1.0 : 0.3;
-    u = run(g, u, step, max_evaluations, evaluations);
+    const Point before = u;
+    u = run(g, u, step, max_evaluations, evaluations, collapsed);
     const double now = g(u);
-    const bool stalled = best - now < 1e-7 * (1.0 + std::abs(now));
+    const bool stalled = best - now < 1e-7 * (1.0 + std::abs(now)) || within_tolerance(before, u);
     best = now;
     if (stalled && restart > 0) break;
   }

@@ -14,6 +14,10 @@ namespace mote::calibrate::detail {
 struct Bounded {
   double start, lo, hi;
   bool log_scale = true;  ///< searched in log(p): for variances and other scale parameters
+  /// A run ends once its simplex spans less than this (p's units) on every parameter that
+  /// has one, or by the function values alone (0): for a parameter whose precision beyond
+  /// some size means nothing to the caller.
+  double tolerance = 0.0;
 };
 
 /// Minimizes f over the box; returns the parameters. Deterministic: a fixed initial simplex and

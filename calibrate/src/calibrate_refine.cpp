@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
+#include <vector>
 
 #include "calibrate_minimize.hpp"
 
@@ -55,33 +57,49 @@ Refined refine_pose(const RayCaster& caster, const LaserScan& scan, const Pose2&
                     double z_hit, double sigma, double range_max, std::size_t step) {
   const double floor = (1.0 - z_hit) / range_max;
   const double norm = z_hit / (std::sqrt(2.0 * std::numbers::pi) * sigma);
-  const auto max_range = static_cast<float>(range_max);
-  std::size_t inside = 0, used = 0;
+  // The readings the fit uses and their beams' angles, cast together at each trial pose (one
+  // scan in 16-wide packets: several times the rate of one ray at a time).
+  std::vector<double> readings;
+  std::vector<float> angles;
+  for (std::size_t b = step / 2; b < scan.ranges.size(); b += step) {
+    const double z = scan.ranges[b];
+    if (!(z >= scan.range_min) || z >= range_max) continue;
+    readings.push_back(z);
+    angles.push_back(static_cast<float>(scan.beam_angle(b)));
+  }
+  std::vector<float> expected(readings.size());
+  std::size_t inside = 0;
   auto cost = [&](const std::vector<double>& p) {
-    inside = used = 0;
-    const Pose2 robot{start.x + p[0], start.y + p[1], start.theta + p[2]};
-    const Pose2 sensor = compose(robot, scan.sensor_pose);
+    inside = 0;
+    const auto x = static_cast<float>(start.x + p[0]);
+    const auto y = static_cast<float>(start.y + p[1]);
+    const auto theta = static_cast<float>(start.theta + p[2]);
+    caster.cast({std::span(&x, 1), std::span(&y, 1), std::span(&theta, 1), angles, scan.sensor_pose,
+                 static_cast<float>(range_max)},
+                expected);
     double sum = 0;
-    for (std::size_t b = step / 2; b < scan.ranges.size(); b += step) {
-      const double z = scan.ranges[b];
-      if (!(z >= scan.range_min) || z >= range_max) continue;
-      const double e =
-          z - caster.cast_one({sensor.x, sensor.y}, sensor.theta + scan.beam_angle(b), max_range);
+    for (std::size_t k = 0; k < readings.size(); ++k) {
+      const double e = readings[k] - static_cast<double>(expected[k]);
       sum -= std::log(norm * std::exp(-0.5 * e * e / (sigma * sigma)) + floor);
-      ++used;
       inside += std::abs(e) < 3 * sigma ? 1U : 0U;
     }
     return sum;
   };
-  // Offsets from the start, bounded: a refinement, not a search for a lost robot.
-  const std::vector<Bounded> box{
-      {0.0, -0.3, 0.3, false}, {0.0, -0.3, 0.3, false}, {0.0, -0.15, 0.15, false}};
+  // Offsets from the start, bounded: a refinement, not a search for a lost robot. Resolved to
+  // 0.1 mm and 0.1 mrad: two orders below the poses' own uncertainty (the Laplace covariance
+  // below, 1-1.5 cm on a laser of a few cm), where the search by function values alone spent
+  // its whole budget of 400 scan casts on six poses in ten.
+  constexpr double kMetre = 1e-4, kRadian = 1e-4;
+  const std::vector<Bounded> box{{0.0, -0.3, 0.3, false, kMetre},
+                                 {0.0, -0.3, 0.3, false, kMetre},
+                                 {0.0, -0.15, 0.15, false, kRadian}};
   int evaluations = 0;
   const std::vector<double> best = minimize(cost, box, 400, evaluations);
   const double at_best = cost(best);  // and the inlier count at the result
-  Refined r{{start.x + best[0], start.y + best[1], wrap_angle(start.theta + best[2])},
-            used == 0 ? 0.0 : static_cast<double>(inside) / static_cast<double>(used),
-            {}};
+  Refined r{
+      {start.x + best[0], start.y + best[1], wrap_angle(start.theta + best[2])},
+      readings.empty() ? 0.0 : static_cast<double>(inside) / static_cast<double>(readings.size()),
+      {}};
   r.covariance = laplace_covariance(cost, best, at_best);
   return r;
 }
