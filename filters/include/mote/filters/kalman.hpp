@@ -9,10 +9,7 @@
 /// Names follow the control-engineering convention the issue uses: Q is the process noise and
 /// R the measurement noise (Thrun writes R_t for the process and Q_t for the measurement).
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <cmath>
-#include <numbers>
 #include <string>
 
 #include "mote/core/error.hpp"
@@ -26,6 +23,20 @@ struct KalmanInnovation {
   /// log N(z; C mu, S): the marginal likelihood of z under the predicted belief.
   double log_likelihood = 0.0;
 };
+
+namespace detail {
+// The steps on evaluated matrices, in place, compiled once in the library for every
+// KalmanFilter<N> (a body per size and argument type made the callers the slowest files of the
+// build to compile). Shapes are checked by the caller.
+void kalman_predict(Eigen::Ref<Eigen::VectorXd> mean, Eigen::Ref<Eigen::MatrixXd> cov,
+                    Eigen::Ref<const Eigen::MatrixXd> a, Eigen::Ref<const Eigen::VectorXd> bu,
+                    Eigen::Ref<const Eigen::MatrixXd> q);
+[[nodiscard]] KalmanInnovation kalman_correct(Eigen::Ref<Eigen::VectorXd> mean,
+                                              Eigen::Ref<Eigen::MatrixXd> cov,
+                                              Eigen::Ref<const Eigen::VectorXd> z,
+                                              Eigen::Ref<const Eigen::MatrixXd> c,
+                                              Eigen::Ref<const Eigen::MatrixXd> r);
+}  // namespace detail
 
 /// A Gaussian belief N(mean, covariance) over an n-dimensional state, n = N or dynamic.
 template <int N = Eigen::Dynamic>
@@ -54,7 +65,7 @@ class KalmanFilter {
     check("KalmanFilter::predict", "B", b, size(), u.rows());
     check("KalmanFilter::predict", "u", u, b.cols(), 1);
     check("KalmanFilter::predict", "Q", q, size(), size());
-    predict_checked(a, Vector(b * u), q);
+    detail::kalman_predict(mean_, cov_, a, Vector(b * u), q);
   }
 
   /// Prediction without a control input: mu = A mu, Sigma = A Sigma A^T + Q.
@@ -62,7 +73,7 @@ class KalmanFilter {
   void predict(const Eigen::MatrixBase<DA>& a, const Eigen::MatrixBase<DQ>& q) {
     check("KalmanFilter::predict", "A", a, size(), size());
     check("KalmanFilter::predict", "Q", q, size(), size());
-    predict_checked(a, Vector::Zero(size()), q);
+    detail::kalman_predict(mean_, cov_, a, Vector::Zero(size()), q);
   }
 
   /// Table 3.1, lines 4-6, with the Joseph form (I - K C) Sigma (I - K C)^T + K R K^T for the
@@ -75,41 +86,10 @@ class KalmanFilter {
     check("KalmanFilter::correct", "z", z, z.rows(), 1);
     check("KalmanFilter::correct", "C", c, z.rows(), size());
     check("KalmanFilter::correct", "R", r, z.rows(), z.rows());
-    return correct_checked(z, c, r);
+    return detail::kalman_correct(mean_, cov_, z, c, r);
   }
 
  private:
-  // The bodies take evaluated matrices (or references to them), so that each KalmanFilter<N>
-  // compiles them once whatever expressions the callers pass (a body per argument type made this
-  // header the slowest file of the test build to compile).
-  void predict_checked(const Matrix& a, const Vector& bu, const Matrix& q) {
-    mean_ = a * mean_ + bu;
-    cov_ = a * cov_ * a.transpose() + q;
-    symmetrize();
-  }
-
-  KalmanInnovation correct_checked(Eigen::Ref<const Eigen::VectorXd> z,
-                                   Eigen::Ref<const Eigen::MatrixXd> c,
-                                   Eigen::Ref<const Eigen::MatrixXd> r) {
-    KalmanInnovation out;
-    out.innovation = z - c * mean_;
-    out.covariance = c * cov_ * c.transpose() + r;
-    const Eigen::LLT<Eigen::MatrixXd> llt(out.covariance);
-    if (llt.info() != Eigen::Success) {
-      throw ConfigError(
-          "KalmanFilter::correct: the innovation covariance C Sigma C^T + R is not positive "
-          "definite (check R)");
-    }
-    // K = Sigma C^T S^-1, through the Cholesky factor instead of an explicit inverse.
-    const Eigen::MatrixXd gain = llt.solve(c * cov_).transpose();
-    mean_ += gain * out.innovation;
-    const Eigen::MatrixXd ikc = Eigen::MatrixXd::Identity(size(), size()) - gain * c;
-    cov_ = ikc * cov_ * ikc.transpose() + gain * r * gain.transpose();
-    symmetrize();
-    out.log_likelihood = gaussian_log_density(llt, out.innovation);
-    return out;
-  }
-
   template <class D>
   static void check(const char* call, const char* name, const Eigen::MatrixBase<D>& m,
                     Eigen::Index rows, Eigen::Index cols) {
@@ -117,16 +97,6 @@ class KalmanFilter {
     throw ConfigError(std::string(call) + ": " + name + " is " + std::to_string(m.rows()) + "x" +
                       std::to_string(m.cols()) + ", expected " + std::to_string(rows) + "x" +
                       std::to_string(cols));
-  }
-
-  void symmetrize() { cov_ = (0.5 * (cov_ + cov_.transpose())).eval(); }
-
-  static double gaussian_log_density(const Eigen::LLT<Eigen::MatrixXd>& llt,
-                                     const Eigen::VectorXd& v) {
-    const Eigen::VectorXd w = llt.matrixL().solve(v);
-    const double log_det = 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
-    const auto k = static_cast<double>(v.size());
-    return -0.5 * (w.squaredNorm() + log_det + k * std::log(2.0 * std::numbers::pi));
   }
 
   Vector mean_;
