@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
 #include "mote/core/parallel.hpp"
 
 namespace mote {
@@ -52,8 +53,7 @@ LikelihoodTable::LikelihoodTable(int width, int height, double resolution, const
       stride_(static_cast<std::size_t>(width_)),
       outside_(outside),
       transform_(make_transform(resolution, origin, border, width_, height_)),
-      values_(
-          std::make_unique_for_overwrite<float[]>(stride_ * static_cast<std::size_t>(height_))) {
+      values_(huge_pages::uninitialized<float>(stride_ * static_cast<std::size_t>(height_))) {
   // Only the ring holds `outside`; fill_rows writes every grid cell.
   const auto b = static_cast<std::size_t>(border);
   const auto rows = static_cast<std::size_t>(height_);

@@ -8,6 +8,7 @@
 
 #include "image_readers.hpp"
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
 #include "mote/core/parallel.hpp"
 
 namespace mote {
@@ -19,7 +20,10 @@ std::string read_bytes(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path) || !in) {
     throw InputError(path.string(), "", "cannot open map image");
   }
-  std::string bytes(static_cast<std::size_t>(in.tellg()), '\0');
+  const auto size = static_cast<std::size_t>(in.tellg());
+  std::string bytes;
+  huge_pages::reserve(bytes, size);
+  bytes.resize(size);
   in.seekg(0);
   if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
     throw InputError(path.string(), "", "cannot read map image");
@@ -88,7 +92,9 @@ OccupancyGrid grid_from_image(const MapImage& image, const MapMetadata& meta,
   const auto h = static_cast<std::size_t>(image.height);
   const auto ch = static_cast<std::size_t>(image.channels);
   const std::vector<CellState> table = ch == 1 ? gray_table(image, meta) : std::vector<CellState>{};
-  std::vector<CellState> cells(w * h);
+  std::vector<CellState> cells;
+  huge_pages::reserve(cells, w * h);
+  cells.resize(w * h);
   // Image row 0 is the top of the map; grid row 0 is the bottom.
   par::for_each_chunk(h, /*grain=*/16, [&](std::size_t row_begin, std::size_t row_end) {
     for (std::size_t row = row_begin; row < row_end; ++row) {

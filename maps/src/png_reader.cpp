@@ -14,6 +14,7 @@
 
 #include "image_readers.hpp"
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
 
 namespace mote::detail {
 
@@ -113,6 +114,7 @@ MapImage to_samples(const std::vector<unsigned char>& pixels, std::uint32_t w, s
   img.channels = channels;
   img.maxval = depth == 16 ? 65535 : 255;
   const std::size_t count = static_cast<std::size_t>(w) * h * static_cast<std::size_t>(channels);
+  huge_pages::reserve(img.samples, count);
   img.samples.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
     // 16-bit PNG samples are big-endian.

@@ -5,6 +5,7 @@
 
 #include "image_readers.hpp"
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
 
 namespace mote::detail {
 
@@ -76,6 +77,7 @@ void read_binary(PnmCursor& in, MapImage& img, std::size_t count) {
                                            std::to_string(count * width) + " bytes, found " +
                                            std::to_string(in.remaining()));
   }
+  huge_pages::reserve(img.samples, count);
   img.samples.resize(count);
   const std::size_t base = in.pos();
   if (width == 1) {

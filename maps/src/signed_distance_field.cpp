@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/maps/distance_field.hpp"
 #include "mote/maps/squared_distances.hpp"
@@ -70,7 +71,7 @@ void SignedDistanceField::build_codes(const OccupancyGrid& grid, int saturation)
   // Two transforms straight into the codes, a band of rows at a time: the first writes every
   // cell, the second overwrites the occupied ones with their depth.
   const auto w = static_cast<std::size_t>(width_);
-  codes_ = std::make_unique_for_overwrite<std::uint16_t[]>(grid.cell_count());
+  codes_ = huge_pages::uninitialized<std::uint16_t>(grid.cell_count());
   for_each_squared_row(
       grid, ObstacleCells::kOccupied, saturation,
       [&](std::size_t j, std::size_t i0, std::size_t count, const std::uint16_t* s) {

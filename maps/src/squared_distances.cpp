@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
 #include "mote/core/parallel.hpp"
 #include "squared_envelope.hpp"
 
@@ -173,7 +174,7 @@ SquaredDistances::SquaredDistances(const OccupancyGrid& grid, ObstacleCells obst
   }
   cap_ = static_cast<std::uint32_t>(n) * static_cast<std::uint32_t>(n);
   // Every value is written by the transform: no zeroing first.
-  squared_ = std::make_unique_for_overwrite<std::uint16_t[]>(grid.cell_count());
+  squared_ = huge_pages::uninitialized<std::uint16_t>(grid.cell_count());
   const auto w = static_cast<std::size_t>(width_);
   for_each_squared_row(
       grid, obstacles, n,

@@ -3,14 +3,12 @@
 #include <cstdlib>
 #include <new>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
+#include "mote/core/huge_pages.hpp"
 
 namespace mote::detail {
 
 namespace {
-constexpr std::size_t kHugePage = std::size_t{2} << 20U;
+constexpr std::size_t kHugePage = huge_pages::kPageBytes;
 }  // namespace
 
 void FreeDeleter::operator()(void* p) const noexcept { std::free(p); }
@@ -24,10 +22,7 @@ void* allocate_huge_bytes(std::size_t bytes) {
   const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
   void* p = std::aligned_alloc(kHugePage, rounded);
   if (p == nullptr) throw std::bad_alloc();
-#if defined(MADV_HUGEPAGE)
-  // Advice only: where it is refused (no THP, "never") the pages are ordinary, nothing else.
-  (void)madvise(p, rounded, MADV_HUGEPAGE);
-#endif
+  huge_pages::advise(p, rounded);
   return p;
 }
 
