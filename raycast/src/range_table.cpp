@@ -36,17 +36,22 @@ std::string megabytes(std::size_t bytes) {
 }
 
 /// The finest lattice whose table fits the budget, 0 when none up to kMaxLattice; `needed` gets
-/// the bytes of the last lattice tried.
+/// at least the bytes of the last lattice tried.
 int fitting_lattice(const detail::CellMask& mask, const RangeTableOptions& o, std::size_t& needed) {
   const std::size_t cells =
       static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height);
+  const std::size_t free = detail::count_free_cells(mask);
   for (int lattice = 1; lattice <= kMaxLattice; ++lattice) {
     const auto blocks = static_cast<std::size_t>((mask.width + lattice - 1) / lattice) *
                         static_cast<std::size_t>((mask.height + lattice - 1) / lattice);
-    // Every block holding a point is an upper bound; count exactly only when it matters.
+    // Every block holding a point is an upper bound, a block holding lattice^2 free cells a
+    // lower one; count exactly (a pass over the map) only between the two.
     if (detail::table_bytes(blocks, blocks, cells, o.angles) <= o.memory_budget_bytes) {
       return lattice;
     }
+    const auto area = static_cast<std::size_t>(lattice) * static_cast<std::size_t>(lattice);
+    needed = detail::table_bytes((free + area - 1) / area, blocks, cells, o.angles);
+    if (needed > o.memory_budget_bytes) continue;
     needed =
         detail::table_bytes(detail::count_lattice_points(mask, lattice), blocks, cells, o.angles);
     if (needed <= o.memory_budget_bytes) return lattice;
@@ -62,7 +67,7 @@ int choose_lattice(const detail::CellMask& mask, const RangeTableOptions& o) {
   throw ConfigError("range table: a memory budget of " + megabytes(o.memory_budget_bytes) +
                     " holds no table of this map at " + std::to_string(o.angles) +
                     " angles; the coarsest lattice (" + std::to_string(kMaxLattice) +
-                    " cells) needs " + megabytes(needed));
+                    " cells) needs at least " + megabytes(needed));
 }
 
 /// Fixed-point units per cell: as fine as 16 bits allow for the map's diagonal, at most 1/16.

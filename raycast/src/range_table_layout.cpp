@@ -1,7 +1,10 @@
 #include "range_table_layout.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
+
+#include "mote/core/parallel.hpp"
 
 namespace mote::detail {
 
@@ -34,27 +37,49 @@ long representative(const CellMask& mask, int lattice, int bi, int bj) {
   return best;
 }
 
-bool block_has_free_cell(const CellMask& mask, int lattice, int bi, int bj) {
-  const int i1 = std::min((bi + 1) * lattice, mask.width);
-  const int j1 = std::min((bj + 1) * lattice, mask.height);
-  for (int j = bj * lattice; j < j1; ++j) {
-    for (int i = bi * lattice; i < i1; ++i) {
-      if (!mask.blocks(i, j)) return true;
-    }
-  }
-  return false;
-}
-
 }  // namespace
 
+std::size_t count_free_cells(const CellMask& mask) {
+  const std::size_t cells =
+      static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height);
+  return par::reduce(
+      cells, /*block=*/std::size_t{1} << 20U, std::size_t{0},
+      [&](std::size_t begin, std::size_t end) {
+        std::size_t n = 0;
+        for (std::size_t k = begin; k < end; ++k) n += mask.cells[k] == 0 ? 1 : 0;
+        return n;
+      },
+      std::plus<>());
+}
+
 std::size_t count_lattice_points(const CellMask& mask, int lattice) {
-  std::size_t n = 0;
-  for (int bj = 0; bj < blocks_along(mask.height, lattice); ++bj) {
-    for (int bi = 0; bi < blocks_along(mask.width, lattice); ++bi) {
-      if (block_has_free_cell(mask, lattice, bi, bj)) ++n;
+  const auto w = static_cast<std::size_t>(mask.width);
+  const auto h = static_cast<std::size_t>(mask.height);
+  const auto l = static_cast<std::size_t>(lattice);
+  // Per row of blocks, the AND of its rows says which columns block throughout (a vector pass
+  // over the mask); a block has a free cell where one of its columns does not.
+  const auto blocks_in = [&](std::size_t bj0, std::size_t bj1) {
+    std::vector<std::uint8_t> all_block(w);
+    std::size_t n = 0;
+    for (std::size_t bj = bj0; bj < bj1; ++bj) {
+      std::fill(all_block.begin(), all_block.end(), std::uint8_t{1});
+      for (std::size_t j = bj * l; j < std::min(h, (bj + 1) * l); ++j) {
+        const std::uint8_t* row = mask.cells + j * w;
+        for (std::size_t i = 0; i < w; ++i) all_block[i] &= row[i];
+      }
+      for (std::size_t i0 = 0; i0 < w; i0 += l) {
+        const std::size_t i1 = std::min(w, i0 + l);
+        if (std::find(all_block.begin() + static_cast<std::ptrdiff_t>(i0),
+                      all_block.begin() + static_cast<std::ptrdiff_t>(i1),
+                      std::uint8_t{0}) != all_block.begin() + static_cast<std::ptrdiff_t>(i1)) {
+          ++n;
+        }
+      }
     }
-  }
-  return n;
+    return n;
+  };
+  return par::reduce(static_cast<std::size_t>(blocks_along(mask.height, lattice)), /*block=*/16,
+                     std::size_t{0}, blocks_in, std::plus<>());
 }
 
 std::size_t table_bytes(std::size_t points, std::size_t blocks, std::size_t cells, int angles) {

@@ -33,6 +33,9 @@ struct TableLayout {
   }
 };
 
+/// Cells that do not block: with a lattice of l cells, at least ceil(free / l^2) points.
+[[nodiscard]] std::size_t count_free_cells(const CellMask& mask);
+
 /// Lattice points of a lattice without building it.
 [[nodiscard]] std::size_t count_lattice_points(const CellMask& mask, int lattice);
 

@@ -5,17 +5,24 @@
 #include <string>
 
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
+#include "mote/core/parallel.hpp"
 
 namespace mote::detail {
 
 std::vector<std::uint8_t> blocking_mask(const OccupancyGrid& grid, bool unknown_blocks) {
-  std::vector<std::uint8_t> mask(grid.cell_count());
-  const auto& cells = grid.cells();
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    const bool blocks =
-        cells[k] == CellState::kOccupied || (unknown_blocks && cells[k] == CellState::kUnknown);
-    mask[k] = blocks ? 1 : 0;
-  }
+  std::vector<std::uint8_t> mask;
+  huge_pages::reserve(mask, grid.cell_count());
+  mask.resize(grid.cell_count());
+  const CellState* cells = grid.cells().data();
+  par::for_each_chunk(mask.size(), /*grain=*/std::size_t{1} << 20U,
+                      [&](std::size_t begin, std::size_t end) {
+                        for (std::size_t k = begin; k < end; ++k) {
+                          const bool blocks = cells[k] == CellState::kOccupied ||
+                                              (unknown_blocks && cells[k] == CellState::kUnknown);
+                          mask[k] = blocks ? 1 : 0;
+                        }
+                      });
   return mask;
 }
 
