@@ -61,11 +61,15 @@ class UnionFind {
 
 // Above this many bins in the bounding box, neighbours are looked up in the hash map instead.
 constexpr std::int64_t kMaxDenseBins = std::int64_t{1} << 22;  // 16 MB of bin numbers
+// Above this many, without the bitmap that sends only the occupied ones there.
+constexpr std::int64_t kMaxBitmapBins = std::int64_t{1} << 27;  // 16 MB of bits
 
 // Bin number by coordinates. Spread particles occupy tens of thousands of bins, and a hash map
 // that large misses L2 on most of the 26 lookups per bin; a dense array over the occupied bins'
 // bounding box (plus one bin on each side in x and y) answers the same from a few cache lines.
-// Boxes over kMaxDenseBins use the hash map.
+// Boxes over kMaxDenseBins use the hash map behind a bitmap of the occupied bins: a global set
+// on a 490 m map (500k particles, 24 M bins in the box, 2 % occupied) spent a third of its
+// first update in the 27 hash lookups per bin, most of them for empty bins.
 class BinLookup {
  public:
   BinLookup(const std::vector<BinCoord>& bins, const BinMap& id_of, std::int32_t nt)
@@ -83,16 +87,25 @@ class BinLookup {
     }
     width_ = x1 - x0_ + 3;
     const std::int64_t cells = width_ * (y1 - y0_ + 3) * nt;
-    if (cells > kMaxDenseBins) return;
-    dense_.assign(static_cast<std::size_t>(cells), BinMap::kAbsent);
-    for (std::size_t i = 0; i < bins.size(); ++i) {
-      dense_[index(bins[i])] = static_cast<std::uint32_t>(i);
+    if (cells <= kMaxDenseBins) {
+      dense_.assign(static_cast<std::size_t>(cells), BinMap::kAbsent);
+      for (std::size_t i = 0; i < bins.size(); ++i) {
+        dense_[index(bins[i])] = static_cast<std::uint32_t>(i);
+      }
+    } else if (cells <= kMaxBitmapBins) {
+      occupied_.assign(static_cast<std::size_t>(cells + 63) / 64, 0);
+      for (const BinCoord& b : bins)
+        occupied_[index(b) / 64] |= std::uint64_t{1} << (index(b) % 64);
     }
   }
 
   // The number of bin n, or kAbsent; n lies within one bin of an occupied bin in x and y.
   [[nodiscard]] std::uint32_t find(const BinCoord& n) const {
-    return dense_.empty() ? id_of_.find(BinIndex::key(n)) : dense_[index(n)];
+    if (!dense_.empty()) return dense_[index(n)];
+    if (!occupied_.empty() && (occupied_[index(n) / 64] >> (index(n) % 64) & 1U) == 0) {
+      return BinMap::kAbsent;
+    }
+    return id_of_.find(BinIndex::key(n));
   }
 
  private:
@@ -108,6 +121,7 @@ class BinLookup {
   std::int64_t y0_ = 0;
   std::int64_t width_ = 0;
   std::vector<std::uint32_t> dense_;
+  std::vector<std::uint64_t> occupied_;  // a bit per bin of the box, when dense_ is too large
 };
 
 void unite_neighbours(const std::vector<BinCoord>& bins, const BinLookup& lookup, std::int32_t nt,

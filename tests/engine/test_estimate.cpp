@@ -165,9 +165,11 @@ TEST(Cluster, MatchesConnectedComponentsOfARandomGrid) {
   }
   ASSERT_GT(expected_count.size(), 64U);  // past the summarizer's per-block cluster sums
 
-  // Once as it is, and once with a last particle 100 km away: its own cluster, and a bounding
-  // box too large for the labelling's dense bin array, so the hash-map lookups run too.
-  for (const bool far_particle : {false, true}) {
+  // Once as it is, and with a last particle 1 km away (its own cluster, and a bounding box too
+  // large for the labelling's dense bin array: the bitmap in front of the hash map runs) or
+  // 100 km away (a box too large for the bitmap too: the hash map alone).
+  for (const double far : {0.0, 1.0e3, 1.0e5}) {
+    const bool far_particle = far > 0.0;
     ParticleStore store(order.size() + (far_particle ? 1 : 0));
     const ParticleView p = store.view();
     for (std::size_t i = 0; i < order.size(); ++i) {
@@ -175,14 +177,14 @@ TEST(Cluster, MatchesConnectedComponentsOfARandomGrid) {
     }
     std::vector<std::size_t> expected = expected_count;
     if (far_particle) {
-      set(p, order.size(), {1.0e5, 0.25, 0.05}, 1.0);
+      set(p, order.size(), {far, 0.25, 0.05}, 1.0);
       expected.push_back(1);
     }
     for (const int threads : {1, 4}) {
       std::vector<PoseEstimate> clusters;
       const Executor ex(threads);
       ex([&] { clusters = cluster(p); });
-      ASSERT_EQ(clusters.size(), expected.size()) << threads << " threads, far " << far_particle;
+      ASSERT_EQ(clusters.size(), expected.size()) << threads << " threads, far " << far;
       for (std::size_t c = 0; c < clusters.size(); ++c) {
         ASSERT_EQ(clusters[c].count, expected[c]) << "cluster " << c << ", " << threads;
       }
