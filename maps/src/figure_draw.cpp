@@ -83,9 +83,13 @@ void disc(RgbImage& image, double cx, double cy, double radius, Rgb c) {
   const int x0 = static_cast<int>(std::floor(cx - radius));
   const int y0 = static_cast<int>(std::floor(cy - radius));
   const int n = static_cast<int>(std::ceil(2 * radius)) + 1;
+  // Squares, not hypot: a global start's map draws 500k particles (0.2 s of hypot calls).
+  const double r2 = radius * radius;
   for (int y = y0; y <= y0 + n; ++y) {
+    const double dy = y + 0.5 - cy;
     for (int x = x0; x <= x0 + n; ++x) {
-      if (std::hypot(x + 0.5 - cx, y + 0.5 - cy) <= radius) put(image, x, y, c);
+      const double dx = x + 0.5 - cx;
+      if (dx * dx + dy * dy <= r2) put(image, x, y, c);
     }
   }
 }
