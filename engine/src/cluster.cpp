@@ -128,11 +128,14 @@ void unite_neighbours(const std::vector<BinCoord>& bins, const BinLookup& lookup
                       std::uint32_t bin, UnionFind& sets) {
   const std::int32_t dt_max = nt >= 3 ? 1 : 0;  // with 1 or 2 theta bins every pair touches
   const BinCoord b = bins[bin];
+  std::int32_t headings[3] = {b.t, b.t, b.t};
+  for (std::int32_t dt = -dt_max; dt <= dt_max; ++dt) {
+    headings[dt + 1] = ((b.t + dt) % nt + nt) % nt;  // theta wraps
+  }
   for (std::int32_t dx = -1; dx <= 1; ++dx) {
     for (std::int32_t dy = -1; dy <= 1; ++dy) {
       for (std::int32_t dt = -dt_max; dt <= dt_max; ++dt) {
-        const BinCoord n{b.x + dx, b.y + dy, ((b.t + dt) % nt + nt) % nt};  // theta wraps
-        const std::uint32_t id = lookup.find(n);
+        const std::uint32_t id = lookup.find({b.x + dx, b.y + dy, headings[dt + 1]});
         if (id < bin) sets.unite(bin, id);  // each edge once; kAbsent is above any bin
       }
     }

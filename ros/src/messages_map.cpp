@@ -11,6 +11,7 @@
 #include "cdr.hpp"
 #include "message_fields.hpp"
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
 #include "mote/logs/tum.hpp"
 
 namespace mote::ros {
@@ -137,7 +138,9 @@ std::vector<CellState> read_cells(CdrReader& r, std::string_view bytes, GridSize
   }
   const std::size_t first = r.position();
   r.skip(n, 1, "data");
-  std::vector<CellState> cells(n);
+  std::vector<CellState> cells;
+  huge_pages::reserve(cells, n);  // a big map's cells on 2 MB pages (huge_pages.hpp says why)
+  cells.resize(n);
   for (std::size_t k = 0; k < cells.size(); ++k) cells[k] = from_trinary(bytes[first + k]);
   return cells;
 }
