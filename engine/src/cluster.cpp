@@ -132,11 +132,14 @@ void unite_neighbours(const std::vector<BinCoord>& bins, const BinLookup& lookup
   for (std::int32_t dt = -dt_max; dt <= dt_max; ++dt) {
     headings[dt + 1] = ((b.t + dt) % nt + nt) % nt;  // theta wraps
   }
-  for (std::int32_t dx = -1; dx <= 1; ++dx) {
-    for (std::int32_t dy = -1; dy <= 1; ++dy) {
-      for (std::int32_t dt = -dt_max; dt <= dt_max; ++dt) {
+  // Each edge once: only the offsets after (0, 0, 0) in (dx, dy, dt) order, half of them; the
+  // opposite offset is the other bin's. Unions commute (the file comment), so the order in
+  // which the edges come does not matter.
+  for (std::int32_t dx = 0; dx <= 1; ++dx) {
+    for (std::int32_t dy = dx == 0 ? 0 : -1; dy <= 1; ++dy) {
+      for (std::int32_t dt = dx == 0 && dy == 0 ? 1 : -dt_max; dt <= dt_max; ++dt) {
         const std::uint32_t id = lookup.find({b.x + dx, b.y + dy, headings[dt + 1]});
-        if (id < bin) sets.unite(bin, id);  // each edge once; kAbsent is above any bin
+        if (id != BinMap::kAbsent) sets.unite(bin, id);
       }
     }
   }
