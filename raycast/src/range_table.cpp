@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "huge_pages.hpp"
 #include "mote/core/error.hpp"
+#include "mote/core/huge_pages.hpp"
 #include "mote/core/parallel.hpp"
 #include "range_table_impl.hpp"
 #include "range_table_sweep.hpp"
@@ -101,7 +101,7 @@ void RangeTable::Impl::fill_rows(const detail::CellMask& m, std::span<const floa
   // 32 entries (64 bytes) in every point's row, so tasks write disjoint entries, share at most
   // the cache lines where their runs meet, and the result is the same for any thread count.
   par::for_each_chunk(angles, kAngleGroup, [&](std::size_t begin, std::size_t end) {
-    const auto columns = detail::allocate_huge<std::uint16_t>((end - begin) * points);
+    const auto columns = huge_pages::uninitialized<std::uint16_t>((end - begin) * points);
     detail::SweepScratch scratch;
     for (std::size_t a = begin; a < end; ++a) {
       detail::sweep_direction(m, px, py, lattice, cos_a[a], sin_a[a], stats.units_per_cell, scratch,
@@ -130,7 +130,8 @@ void RangeTable::Impl::build() {
   // parallel (the serial fill was 4 % of an Intel build's perf samples). On 2 MB pages, as are
   // the tasks' columns: paired runs of the Intel build, 1.13-1.16 s against 1.54-1.59 s on 4 KB
   // pages (bench_raycast, RangeTable_Build).
-  ranges = detail::allocate_huge<std::uint16_t>(points * static_cast<std::size_t>(options.angles));
+  ranges =
+      huge_pages::uninitialized<std::uint16_t>(points * static_cast<std::size_t>(options.angles));
   fill_rows(m, point_x, point_y, layout.lattice, ranges.get());
   stats.lattice = layout.lattice;
   stats.points = points;

@@ -6,10 +6,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
-#include "huge_pages.hpp"
+#include "mote/core/huge_pages.hpp"
 #include "mote/raycast/range_table.hpp"
 #include "range_table_layout.hpp"
 #include "ray_setup.hpp"
@@ -61,7 +62,7 @@ struct RangeTable::Impl {
   RangeTableOptions options;
   std::vector<std::uint8_t> blocking;
   detail::TableLayout layout;
-  detail::HugeArray<std::uint16_t> ranges;  ///< ranges[slot * angles + a]
+  std::unique_ptr<std::uint16_t[]> ranges;  ///< ranges[slot * angles + a]
   std::vector<float> cos_a;                 ///< direction of table angle a in the grid frame
   std::vector<float> sin_a;
   std::vector<float> point_x;  ///< lattice point of each slot, in cells

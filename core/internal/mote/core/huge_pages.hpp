@@ -5,7 +5,8 @@
 /// machine a fault is slow: on the Intel map tiled 12 x 9 (67 M cells) the faults of the image,
 /// the grid, the likelihood table and the signed field were a third of the start-up's CPU
 /// samples, and advising those arrays for 2 MB pages took 512 times fewer faults (start to the
-/// first update 2.1 -> 1.3 s; BENCHMARKS.md, "Large maps"). Advice only: where the system has no
+/// first update 2.1 -> 1.3 s; BENCHMARKS.md, "Large maps"); the range table's 190 MB on Intel's
+/// map had been 11 % of its build's samples. Advice only: where the system has no
 /// transparent huge pages (or "never"), the pages stay ordinary and nothing else changes.
 
 #include <cstddef>
