@@ -44,24 +44,45 @@ struct Gate {
 
 }  // namespace
 
-bool Localizer::Impl::keep_place(const PoseEstimate& place) {
-  const Gate gate(place);
+bool Localizer::Impl::raise_places(const std::vector<const PoseEstimate*>& fallen) {
+  std::vector<Gate> gates;
+  for (const PoseEstimate* place : fallen) gates.emplace_back(*place);
   const ParticleView p = store.view();
-  // The place's weight, summed in fixed blocks: the same for any thread count and grain.
-  const auto inside_logw = [p, gate](std::size_t i) {
-    return gate.contains(p.pose(i)) ? p.logw[i] : detail::kNegInfF;
+  // The gate a particle falls in (the places are a scan range apart: at most one), or none.
+  const auto gate_of = [&gates](const Pose2& pose) {
+    return static_cast<std::size_t>(
+        std::find_if(gates.begin(), gates.end(), [&](const Gate& g) { return g.contains(pose); }) -
+        gates.begin());
   };
-  const double inside = detail::sum_weights(p.size(), 0.0F, inside_logw).w;
-  if (!(inside > 0.0) || inside >= kPlaceFloor) return false;
-  // Raise the place to the floor and scale the rest down: the weights stay normalized, and
+  // Each place's weight, summed in fixed blocks: the same for any thread count and grain.
+  std::vector<double> inside(gates.size());
+  for (std::size_t k = 0; k < gates.size(); ++k) {
+    inside[k] = detail::sum_weights(p.size(), 0.0F, [p, gate = gates[k]](std::size_t i) {
+                  return gate.contains(p.pose(i)) ? p.logw[i] : detail::kNegInfF;
+                }).w;
+  }
+  // Raise each place to the floor and scale the rest down: the weights stay normalized, and
   // within each part their ratios stay what the scans made them. A thousandth above the floor,
-  // so that float rounding does not leave the place just under it, where neither the count of
+  // so that float rounding does not leave a place just under it, where neither the count of
   // places nor the next update's keep_places() would see it.
   const double target = kPlaceFloor * 1.001;
-  const auto raise = static_cast<float>(std::log(target / inside));
-  const auto lower = static_cast<float>(std::log((1.0 - target) / (1.0 - inside)));
+  std::vector<float> log_factor(gates.size() + 1, 0.0F);
+  double raised = 0.0;
+  double raised_to = 0.0;
+  for (std::size_t k = 0; k < gates.size(); ++k) {
+    if (!(inside[k] > 0.0) || inside[k] >= kPlaceFloor) continue;
+    log_factor[k] = static_cast<float>(std::log(target / inside[k]));
+    raised += inside[k];
+    raised_to += target;
+  }
+  if (raised_to == 0.0 || raised_to >= 1.0) return false;
+  log_factor.back() = static_cast<float>(std::log((1.0 - raised_to) / (1.0 - raised)));
+  // Places left as they were (at or above the floor) are scaled with the rest.
+  for (std::size_t k = 0; k < gates.size(); ++k) {
+    if (!(inside[k] > 0.0) || inside[k] >= kPlaceFloor) log_factor[k] = log_factor.back();
+  }
   par::for_each_chunk(p.size(), config.grain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) p.logw[i] += gate.contains(p.pose(i)) ? raise : lower;
+    for (std::size_t i = begin; i < end; ++i) p.logw[i] += log_factor[gate_of(p.pose(i))];
   });
   return true;
 }
@@ -70,8 +91,10 @@ void Localizer::Impl::keep_places(const Pose2& odometry) {
   // The places of the previous update, carried by the odometry: the heaviest cluster at one of
   // them that fell below the floor (no cluster there holds it any more) is raised back to it,
   // as long as this scan fits it as well as the best hypothesis (McNemar's z between them not
-  // below -HypothesisHold::kZ). One place per update: raising one lowers every other, and two
-  // raises in one update undid each other.
+  // below -HypothesisHold::kZ). Every such place in one raise: raising one lowers every other,
+  // and two raises in turn undid each other, while one place per update left a second place
+  // that fell in the same update without particles (a map of 25 identical floors went from
+  // three places to one in two updates and read tracking one floor over).
   // Not before the belief has settled on tight hypotheses (as the hold): a global search's
   // clusters come and go with every scan, and holding them up at a tenth each kept Wean's
   // look-alike corridors in the belief until one of them won.
@@ -82,6 +105,7 @@ void Localizer::Impl::keep_places(const Pose2& odometry) {
   const auto at = [&](const Pose2& place, const Pose2& pose) {
     return !HypothesisHold::other_place(place, pose, range);
   };
+  std::vector<const PoseEstimate*> fallen_places;
   for (const Pose2& anchor : place_anchors) {
     const Pose2 place = compose(anchor, moved);
     if (at(place, best.mean)) continue;
@@ -98,9 +122,12 @@ void Localizer::Impl::keep_places(const Pose2& odometry) {
             correlation) < -HypothesisHold::kZ) {
       continue;
     }
-    if (keep_place(*fallen)) update_estimate();
-    return;
+    // At most nine places raised to a tenth beside the best.
+    if (fallen_places.size() + 1 < static_cast<std::size_t>(1.0 / kPlaceFloor)) {
+      fallen_places.push_back(&*fallen);
+    }
   }
+  if (!fallen_places.empty() && raise_places(fallen_places)) update_estimate();
 }
 
 Pose2 Localizer::Impl::fitted(const Pose2& start) const {

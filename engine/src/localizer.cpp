@@ -138,6 +138,7 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
       moved = has_odometry;
       timed(stats.ms.sensor, [&] {
         if (!focus_judged) judge_focus();
+        place_prior(odometry);
         drop_blocked_beams();
         weigh();
       });
@@ -146,6 +147,7 @@ void Localizer::Impl::run_filter(const Pose2& odometry) {
         normalize();
       });
       timed(stats.ms.resample, [&] {
+        weigh_places();
         maybe_resample();
         maybe_inject();
       });

@@ -82,10 +82,21 @@ struct Localizer::Impl {
   void hold_report(const ScanMatch& at_held);  // reports the held place, at best uncertain
   // After update_estimate() (keep_places.cpp): a place of the previous update whose cluster
   // fell below a tenth of the belief while this scan fits it as well as the best hypothesis
-  // is raised back to a tenth (keep_place), so that look-alike places are not resampled away
+  // is raised back to a tenth (raise_places), so that look-alike places are not resampled away
   // by the luck of a few hundred particles (the places are judge_focus()'s place_anchors).
   void keep_places(const Pose2& odometry);
-  bool keep_place(const PoseEstimate& place);
+  // Raises the fallen places to a tenth together (one raise lowers every other place).
+  bool raise_places(const std::vector<const PoseEstimate*>& fallen);
+  // The resampling, with each of the previous update's places (carried by the odometry) that
+  // this scan did not decisively refute drawn with the same particle count and its weight kept
+  // (place_draw.cpp): a place is not starved because the luck of its few lowered its weight.
+  // place_prior() runs before the scan is weighed, resample_by_place() in place of the draw.
+  void place_prior(const Pose2& odometry);
+  void weigh_places();  // after the scan's weights: place_weight, place_log_bayes
+  void resample_by_place(const KldConfig& per_place);
+  void label_places();  // place_label: the index in even_places or none
+  [[nodiscard]] std::vector<double> place_weights() const;  // per place, then the rest's
+  void scale_by_place(const std::vector<double>& factor);   // weights times factor[label]
   // The scan matched from `start` (the start itself when the match does not converge).
   [[nodiscard]] Pose2 fitted(const Pose2& start) const;
 
@@ -141,7 +152,14 @@ struct Localizer::Impl {
   bool one_place = false;
   std::size_t belief_places = 0;     // places_on()'s count, for the next update's resampling
   std::vector<Pose2> place_anchors;  // places_on()'s anchors, for keep_places and the filter
-  bool focus_judged = false;         // false between initialization and the first judge_focus()
+  // The places of this update for resample_by_place (empty: the plain draw), each particle's
+  // place among them, and their weights before the scan was weighed.
+  std::vector<Pose2> even_places;
+  std::vector<std::uint8_t> place_label;
+  std::vector<double> prior_place_weight;
+  std::vector<double> place_weight;     // after the scan (and the rest's, last)
+  std::vector<double> place_log_bayes;  // the scan's log Bayes factor against the best place
+  bool focus_judged = false;            // false between initialization and the first judge_focus()
   // Running geometric mean of ScanMatch::correlation over the matches taken while tracking
   // (learn_correlation), by which the next match's covariance is inflated; 0 until the first,
   // which then inflates by its own.

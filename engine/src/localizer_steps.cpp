@@ -275,7 +275,7 @@ void Localizer::Impl::maybe_resample() {
   KldConfig per_place = kld;
   per_place.min_particles =
       std::min(kld.max_particles, kld.min_particles * std::max<std::size_t>(1, belief_places));
-  resample_kld_systematic(store, bins, per_place, config.seed, step, config.grain);
+  resample_by_place(per_place);
   stats.resampled = true;
 }
 
