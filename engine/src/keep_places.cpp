@@ -2,7 +2,10 @@
 // keep_places).
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
+#include <variant>
 
 #include "blocked_beams.hpp"
 #include "localizer_impl.hpp"
@@ -90,8 +93,8 @@ bool Localizer::Impl::raise_places(const std::vector<const PoseEstimate*>& falle
 void Localizer::Impl::keep_places(const Pose2& odometry) {
   // The places of the previous update, carried by the odometry: the heaviest cluster at one of
   // them that fell below the floor (no cluster there holds it any more) is raised back to it,
-  // as long as this scan fits it as well as the best hypothesis (McNemar's z between them not
-  // below -HypothesisHold::kZ). Every such place in one raise: raising one lowers every other,
+  // as long as the scans have not refuted it against the best hypothesis (refuted()). Every
+  // such place in one raise: raising one lowers every other,
   // and two raises in turn undid each other, while one place per update left a second place
   // that fell in the same update without particles (a map of 25 identical floors went from
   // three places to one in two updates and read tracking one floor over).
@@ -117,17 +120,73 @@ void Localizer::Impl::keep_places(const Pose2& odometry) {
         std::find_if(estimate.clusters.begin(), estimate.clusters.end(),
                      [&](const PoseEstimate& c) { return here(c) && c.weight > 0.0; });
     if (held_up != estimate.clusters.end() || fallen == estimate.clusters.end()) continue;
-    if (HypothesisHold::z(
-            matcher->hit_difference(endpoints, fitted(fallen->mean), fitted(best.mean)),
-            correlation) < -HypothesisHold::kZ) {
-      continue;
-    }
+    if (refuted(*fallen, best, moved)) continue;
     // At most nine places raised to a tenth beside the best.
     if (fallen_places.size() + 1 < static_cast<std::size_t>(1.0 / kPlaceFloor)) {
       fallen_places.push_back(&*fallen);
     }
   }
+  forget_risen_places(moved);
   if (!fallen_places.empty() && raise_places(fallen_places)) update_estimate();
+}
+
+bool Localizer::Impl::refuted(const PoseEstimate& fallen, const PoseEstimate& best,
+                              const Pose2& moved) {
+  const auto same = [&](const FallenPlace& f) {
+    return !HypothesisHold::other_place(compose(f.place, moved), fallen.mean, scan_range);
+  };
+  auto it = std::find_if(fallen_evidence.begin(), fallen_evidence.end(), same);
+  if (it == fallen_evidence.end()) it = fallen_evidence.emplace(fallen_evidence.end());
+  FallenPlace& f = *it;
+  f.place = fallen.mean;
+  f.seen = true;
+  if (f.refuted) return true;
+  const Pose2 here = fitted(fallen.mean);
+  const Pose2 there = fitted(best.mean);
+  // This scan alone: McNemar's z on the readings that hit the map at one of the two only.
+  if (HypothesisHold::z(matcher->hit_difference(endpoints, here, there), correlation) <
+      -HypothesisHold::kZ) {
+    return f.refuted = true;
+  }
+  // The scans since the place fell: the sum of their log likelihood ratios at the two fits,
+  // tempered as the particles' weights were. Each ratio is the sensor model's own, at the
+  // place's best fit, so it has none of the particles' luck: identical places give 0 scan after
+  // scan, and a place the scans keep disfavouring adds up. Refuted past a Bayes factor of e^-5,
+  // the resampling's "very strong" (place_draw.cpp). A corridor's look-alike stretch 5 m along
+  // (Wean) fell by a factor of 2-10 per scan while no reading told it apart.
+  f.log_ratio += stats.tempering * (scan_log_likelihood(here) - scan_log_likelihood(there));
+  return f.refuted = f.log_ratio < kVeryStrongEvidence;
+}
+
+void Localizer::Impl::forget_risen_places(const Pose2& moved) {
+  // The evidence against a place lasts while it keeps falling; once it has risen above the
+  // floor on its own it starts over. A refuted place stays refuted while any of the belief is
+  // there: it starves away, drawn by its weight.
+  std::erase_if(fallen_evidence, [&](FallenPlace& f) {
+    if (!f.seen) f.place = compose(f.place, moved);  // not matched this update: carried
+    const bool seen = std::exchange(f.seen, false);
+    const bool in_belief =
+        std::any_of(estimate.clusters.begin(), estimate.clusters.end(), [&](const PoseEstimate& c) {
+          return c.weight > 0.0 && !HypothesisHold::other_place(f.place, c.mean, scan_range);
+        });
+    return !(seen || (f.refuted && in_belief));
+  });
+}
+
+double Localizer::Impl::scan_log_likelihood(const Pose2& pose) const {
+  // One pose weighed as weigh() weighed the particles (the model is prepared for this scan's
+  // beams), in a padded block of its own: the kernels run whole blocks of lanes.
+  alignas(64) std::array<float, kParticlePadding> x{};
+  alignas(64) std::array<float, kParticlePadding> y{};
+  alignas(64) std::array<float, kParticlePadding> theta{};
+  alignas(64) std::array<float, kParticlePadding> logw{};
+  x.fill(static_cast<float>(pose.x));
+  y.fill(static_cast<float>(pose.y));
+  theta.fill(static_cast<float>(wrap_angle(pose.theta)));
+  const ParticleView one{x.data(), y.data(), theta.data(), logw.data(), 1};
+  if (beams.empty()) return 0.0;
+  std::visit([&](const auto& model) { model.weigh(beams, one, 0, 1); }, *sensor);
+  return static_cast<double>(logw[0]);
 }
 
 Pose2 Localizer::Impl::fitted(const Pose2& start) const {

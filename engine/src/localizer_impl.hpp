@@ -36,6 +36,11 @@ using MotionVariant = std::variant<OdometryModel, OmniModel, AckermannModel>;
 // The motion model a config asks for (localizer_steps.cpp).
 [[nodiscard]] MotionVariant make_motion(const LocalizerConfig& c);
 
+// A log Bayes factor below this is "very strong" evidence against a hypothesis (2 ln B < -10 on
+// Kass and Raftery's scale, J. Am. Stat. Assoc. 90, 1995): where the scans have told two places
+// apart (place_draw.cpp, keep_places.cpp).
+inline constexpr double kVeryStrongEvidence = -5.0;
+
 struct Localizer::Impl {
   Impl(std::shared_ptr<const OccupancyGrid> grid, LocalizerConfig cfg);
 
@@ -81,10 +86,16 @@ struct Localizer::Impl {
   void hold_reported_place(const Pose2& odometry);
   void hold_report(const ScanMatch& at_held);  // reports the held place, at best uncertain
   // After update_estimate() (keep_places.cpp): a place of the previous update whose cluster
-  // fell below a tenth of the belief while this scan fits it as well as the best hypothesis
-  // is raised back to a tenth (raise_places), so that look-alike places are not resampled away
+  // fell below a tenth of the belief while the scans have not refuted it (refuted()) is
+  // raised back to a tenth (raise_places), so that look-alike places are not resampled away
   // by the luck of a few hundred particles (the places are judge_focus()'s place_anchors).
   void keep_places(const Pose2& odometry);
+  // Whether the scans since `fallen` fell below a tenth refute it against the best place,
+  // adding this scan's evidence (keep_places.cpp).
+  bool refuted(const PoseEstimate& fallen, const PoseEstimate& best, const Pose2& moved);
+  void forget_risen_places(const Pose2& moved);  // after keep_places: drops stale evidence
+  // This scan's log-likelihood at one pose, untempered, as weigh() gave the particles.
+  [[nodiscard]] double scan_log_likelihood(const Pose2& pose) const;
   // Raises the fallen places to a tenth together (one raise lowers every other place).
   bool raise_places(const std::vector<const PoseEstimate*>& fallen);
   // The resampling, with each of the previous update's places (carried by the odometry) that
@@ -152,6 +163,16 @@ struct Localizer::Impl {
   bool one_place = false;
   std::size_t belief_places = 0;     // places_on()'s count, for the next update's resampling
   std::vector<Pose2> place_anchors;  // places_on()'s anchors, for keep_places and the filter
+  // The evidence against each place that has fallen below a tenth (keep_places): where it
+  // was, the tempered log likelihood ratio against the best summed over its scans, the
+  // verdict, and whether it fell again this update.
+  struct FallenPlace {
+    Pose2 place;
+    double log_ratio = 0.0;
+    bool refuted = false;
+    bool seen = false;
+  };
+  std::vector<FallenPlace> fallen_evidence;
   // The places of this update for resample_by_place (empty: the plain draw), each particle's
   // place among them, and their weights before the scan was weighed.
   std::vector<Pose2> even_places;

@@ -110,16 +110,14 @@ void Localizer::Impl::weigh_places() {
 
 void Localizer::Impl::resample_by_place(const KldConfig& per_place) {
   // The places drawn evenly: those the scan did not refute. Below a Bayes factor of e^-5 against
-  // the best place (2 ln B < -10, "very strong" evidence on Kass and Raftery's scale, J. Am.
-  // Stat. Assoc. 90, 1995) the scan has told the places apart, and the place is drawn by its
-  // weight. What the particles' luck does to a place's weight is a factor of a few per scan (a
-  // floor of 25 identical copies: 0.2-5), what a scan of another place does is 1e-6 and less
-  // (Intel kidnapped).
-  constexpr double kVeryStrong = -5.0;  // ln B
+  // the best place (kVeryStrongEvidence) the scan has told the places apart, and the place is
+  // drawn by its weight. What the particles' luck does to a place's weight is a factor of a few per
+  // scan (a floor of 25 identical copies: 0.2-5), what a scan of another place does is 1e-6 and
+  // less (Intel kidnapped).
   const std::vector<double>& weight = place_weight;
   std::vector<bool> even(place_log_bayes.size());
   std::transform(place_log_bayes.begin(), place_log_bayes.end(), even.begin(),
-                 [](double log_b) { return log_b >= kVeryStrong; });
+                 [](double log_b) { return log_b >= kVeryStrongEvidence; });
   const auto drawn_evenly = static_cast<double>(std::count(even.begin(), even.end(), true));
   if (drawn_evenly < 2.0) {
     resample_kld_systematic(store, bins, per_place, config.seed, step, config.grain);

@@ -322,7 +322,8 @@ def check_relocalization(args, browser, profile, work):
     print(f"kidnapped Intel band px by state {shares}, re-localization mark {marks} px; "
           f"trajectory px {trajectory}")
     # A state the run holds for two updates in a row or more spans at least a pixel column of the
-    # band (about 0.6 px per update here); a single update alone may blend into its neighbours.
+    # band (about 0.6 px per update here); a single update alone blends into its neighbours, or
+    # lies under a re-localization's 2 px mark (both of this run's uncertain updates do).
     runs = longest_runs([r["state"] for r in rows])
     for state in STATES:
         if runs.get(state, 0) >= 2:

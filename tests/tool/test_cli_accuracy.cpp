@@ -83,6 +83,11 @@ TEST(Cli, WeanGlobalLocalizationSeedsAgree) {
     const std::string report = slurp(out / "report.json");
     EXPECT_DOUBLE_EQ(json_number(report, "scans"), 713.0);
     EXPECT_DOUBLE_EQ(json_number(report, "records_skipped"), 0.0);
+    // One place once the global search has settled: `uncertain` only around its first updates
+    // (2.4-5.3 % of the updates on seeds 1-5). A corridor's look-alike stretch 5 m along that no
+    // reading tells apart, kept as a second place while the likelihood kept refusing it, made it
+    // 13-14 % (the fallen place's evidence as one scan's McNemar test alone).
+    EXPECT_LE(json_number(report, "uncertain"), 0.10) << "seed " << seed;
     const std::array<double, 2> xy = end_position(out);
     ASSERT_FALSE(std::isnan(xy[0])) << "seed " << seed << ": no end pose";
     EXPECT_LT(std::hypot(xy[0] - 41.45, xy[1] - 40.28), 0.5)
