@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <variant>
 
@@ -19,6 +20,8 @@ namespace {
 // The share of the belief a place keeps while the scans favour no other place over it: what
 // focused() counts as a hypothesis of its own.
 constexpr double kPlaceFloor = 1.0 - BlockedBeamFilter::kFocusedWeight;
+// The places the belief can hold at the floor each, the best among them.
+constexpr auto kMaxPlaces = static_cast<std::size_t>(1.0 / kPlaceFloor + 0.5);
 // A particle belongs to a cluster within this squared Mahalanobis distance of its mean: the
 // 0.999 quantile of chi-square with 3 degrees of freedom.
 constexpr double kMemberGate = 16.27;
@@ -51,17 +54,19 @@ bool Localizer::Impl::raise_places(const std::vector<const PoseEstimate*>& falle
   std::vector<Gate> gates;
   for (const PoseEstimate* place : fallen) gates.emplace_back(*place);
   const ParticleView p = store.view();
-  // The gate a particle falls in (the places are a scan range apart: at most one), or none.
+  // The first gate a particle falls in (the places are a scan range apart, their gates rarely
+  // overlap), or gates.size() for none.
   const auto gate_of = [&gates](const Pose2& pose) {
     return static_cast<std::size_t>(
         std::find_if(gates.begin(), gates.end(), [&](const Gate& g) { return g.contains(pose); }) -
         gates.begin());
   };
-  // Each place's weight, summed in fixed blocks: the same for any thread count and grain.
+  // Each place's weight, summed in fixed blocks (the same for any thread count and grain), over
+  // the particles whose first gate it is: the sums are disjoint where two gates overlap.
   std::vector<double> inside(gates.size());
   for (std::size_t k = 0; k < gates.size(); ++k) {
-    inside[k] = detail::sum_weights(p.size(), 0.0F, [p, gate = gates[k]](std::size_t i) {
-                  return gate.contains(p.pose(i)) ? p.logw[i] : detail::kNegInfF;
+    inside[k] = detail::sum_weights(p.size(), 0.0F, [p, &gate_of, k](std::size_t i) {
+                  return gate_of(p.pose(i)) == k ? p.logw[i] : detail::kNegInfF;
                 }).w;
   }
   // Raise each place to the floor and scale the rest down: the weights stay normalized, and
@@ -94,82 +99,105 @@ void Localizer::Impl::keep_places(const Pose2& odometry) {
   // The places of the previous update, carried by the odometry: the heaviest cluster at one of
   // them that fell below the floor (no cluster there holds it any more) is raised back to it,
   // as long as the scans have not refuted it against the best hypothesis (refuted()). Every
-  // such place in one raise: raising one lowers every other,
-  // and two raises in turn undid each other, while one place per update left a second place
-  // that fell in the same update without particles (a map of 25 identical floors went from
-  // three places to one in two updates and read tracking one floor over).
+  // such place in one raise: raising one lowers every other, and two raises in turn undid each
+  // other, while one place per update left a second place that fell in the same update without
+  // particles (a map of 25 identical floors went from three places to one in two updates and
+  // read tracking one floor over).
   // Not before the belief has settled on tight hypotheses (as the hold): a global search's
   // clusters come and go with every scan, and holding them up at a tenth each kept Wean's
   // look-alike corridors in the belief until one of them won.
-  if (!has_held || estimate.clusters.size() < 2 || endpoints.empty()) return;
   const Pose2 moved = between(last_odometry, odometry);
-  const double range = scan_range;
+  if (!has_held || estimate.clusters.size() < 2 || endpoints.empty()) {
+    forget_places(moved);
+    return;
+  }
   const PoseEstimate& best = estimate.clusters.front();
   const auto at = [&](const Pose2& place, const Pose2& pose) {
-    return !HypothesisHold::other_place(place, pose, range);
+    return !HypothesisHold::other_place(place, pose, scan_range);
   };
+  std::optional<BestFit> best_fit;          // matched once, when a place beside it needs it
+  std::vector<const PoseEstimate*> judged;  // each cluster once, though two anchors reach it
   std::vector<const PoseEstimate*> fallen_places;
+  std::size_t held_places = 1;  // the best
   for (const Pose2& anchor : place_anchors) {
     const Pose2 place = compose(anchor, moved);
     if (at(place, best.mean)) continue;
-    const auto here = [&](const PoseEstimate& c) { return at(place, c.mean); };
-    const auto held_up =
+    // Clusters are heaviest first: the first one here is the place's.
+    const auto here =
         std::find_if(estimate.clusters.begin(), estimate.clusters.end(),
-                     [&](const PoseEstimate& c) { return here(c) && c.weight >= kPlaceFloor; });
-    const auto fallen =
-        std::find_if(estimate.clusters.begin(), estimate.clusters.end(),
-                     [&](const PoseEstimate& c) { return here(c) && c.weight > 0.0; });
-    if (held_up != estimate.clusters.end() || fallen == estimate.clusters.end()) continue;
-    if (refuted(*fallen, best, moved)) continue;
-    // At most nine places raised to a tenth beside the best.
-    if (fallen_places.size() + 1 < static_cast<std::size_t>(1.0 / kPlaceFloor)) {
-      fallen_places.push_back(&*fallen);
+                     [&](const PoseEstimate& c) { return at(place, c.mean) && c.weight > 0.0; });
+    if (here == estimate.clusters.end()) continue;
+    if (std::find(judged.begin(), judged.end(), &*here) != judged.end()) continue;
+    judged.push_back(&*here);
+    const bool fallen = here->weight < kPlaceFloor;
+    if (!best_fit) best_fit = fit_best(best);
+    if (refuted(*here, *best_fit, moved, fallen)) continue;
+    if (fallen) {
+      fallen_places.push_back(&*here);
+    } else {
+      ++held_places;
     }
   }
-  forget_risen_places(moved);
+  // No more places at a tenth than the belief holds: the best and the places still above the
+  // floor keep theirs (previous update's anchors come heaviest first).
+  const std::size_t room = kMaxPlaces - std::min(held_places, kMaxPlaces);
+  if (fallen_places.size() > room) fallen_places.resize(room);
+  forget_places(moved);
   if (!fallen_places.empty() && raise_places(fallen_places)) update_estimate();
 }
 
-bool Localizer::Impl::refuted(const PoseEstimate& fallen, const PoseEstimate& best,
-                              const Pose2& moved) {
-  const auto same = [&](const FallenPlace& f) {
-    return !HypothesisHold::other_place(compose(f.place, moved), fallen.mean, scan_range);
-  };
-  auto it = std::find_if(fallen_evidence.begin(), fallen_evidence.end(), same);
-  if (it == fallen_evidence.end()) it = fallen_evidence.emplace(fallen_evidence.end());
-  FallenPlace& f = *it;
-  f.place = fallen.mean;
-  f.seen = true;
-  if (f.refuted) return true;
-  const Pose2 here = fitted(fallen.mean);
-  const Pose2 there = fitted(best.mean);
-  // This scan alone: McNemar's z on the readings that hit the map at one of the two only.
-  if (HypothesisHold::z(matcher->hit_difference(endpoints, here, there), correlation) <
-      -HypothesisHold::kZ) {
-    return f.refuted = true;
-  }
-  // The scans since the place fell: the sum of their log likelihood ratios at the two fits,
-  // tempered as the particles' weights were. Each ratio is the sensor model's own, at the
-  // place's best fit, so it has none of the particles' luck: identical places give 0 scan after
-  // scan, and a place the scans keep disfavouring adds up. Refuted past a Bayes factor of e^-5,
-  // the resampling's "very strong" (place_draw.cpp). A corridor's look-alike stretch 5 m along
-  // (Wean) fell by a factor of 2-10 per scan while no reading told it apart.
-  f.log_ratio += stats.tempering * (scan_log_likelihood(here) - scan_log_likelihood(there));
-  return f.refuted = f.log_ratio < kVeryStrongEvidence;
+Localizer::Impl::BestFit Localizer::Impl::fit_best(const PoseEstimate& best) const {
+  const Pose2 pose = fitted(best.mean);
+  return {.pose = pose, .log_likelihood = scan_log_likelihood(pose)};
 }
 
-void Localizer::Impl::forget_risen_places(const Pose2& moved) {
-  // The evidence against a place lasts while it keeps falling; once it has risen above the
-  // floor on its own it starts over. A refuted place stays refuted while any of the belief is
-  // there: it starves away, drawn by its weight.
-  std::erase_if(fallen_evidence, [&](FallenPlace& f) {
-    if (!f.seen) f.place = compose(f.place, moved);  // not matched this update: carried
-    const bool seen = std::exchange(f.seen, false);
+bool Localizer::Impl::refuted(const PoseEstimate& place, const BestFit& best, const Pose2& moved,
+                              bool fallen) {
+  const auto same = [&](const PlaceEvidence& e) {
+    return !HypothesisHold::other_place(compose(e.place, moved), place.mean, scan_range);
+  };
+  auto it = std::find_if(place_evidence.begin(), place_evidence.end(), same);
+  if (it == place_evidence.end()) it = place_evidence.emplace(place_evidence.end());
+  PlaceEvidence& e = *it;
+  e.place = place.mean;
+  e.seen = true;
+  if (e.refuted) return true;
+  const Pose2 here = fitted(place.mean);
+  // A fallen place, on this scan alone: McNemar's z on the readings that hit the map at one of
+  // the two only (the hold's statistic, at one look's level).
+  if (fallen && HypothesisHold::z(matcher->hit_difference(endpoints, here, best.pose),
+                                  correlation) < -HypothesisHold::kZ) {
+    return e.refuted = true;
+  }
+  // Every scan since the place first stood beside the best: the sum of their log likelihood
+  // ratios at the two fits, tempered as the particles' weights were (the filter's own measure
+  // of evidence: the readings of a scan are not independent, kVeryStrongEvidence). Each ratio
+  // is the sensor model's own at the place's best fit, so it has none of the particles' luck:
+  // identical places give 0 scan after scan, and a place the scans keep disfavouring adds up. A
+  // corridor's look-alike stretch 5 m along (Wean) fell by a factor of 2-10 per scan while no
+  // reading told it apart.
+  const double ratio = stats.tempering * (scan_log_likelihood(here) - best.log_likelihood);
+  if (ratio == -INFINITY) return e.refuted = true;  // no pose there explains a reading
+  if (std::isfinite(ratio)) e.log_ratio += ratio;   // NaN (neither explains one): no evidence
+  return e.refuted = e.log_ratio < kVeryStrongEvidence;
+}
+
+void Localizer::Impl::forget_places(const Pose2& moved) {
+  // The evidence against a place lasts while it stands beside the best place; once it is the
+  // best, or no anchor led to it (it starved away), it starts over. A refuted place stays
+  // refuted while any of the belief is there: it starves away, drawn by its weight.
+  const auto at_best = [&](const Pose2& place) {
+    return !estimate.clusters.empty() &&
+           !HypothesisHold::other_place(place, estimate.clusters.front().mean, scan_range);
+  };
+  std::erase_if(place_evidence, [&](PlaceEvidence& e) {
+    if (!e.seen) e.place = compose(e.place, moved);  // not judged this update: carried
+    const bool seen = std::exchange(e.seen, false);
     const bool in_belief =
         std::any_of(estimate.clusters.begin(), estimate.clusters.end(), [&](const PoseEstimate& c) {
-          return c.weight > 0.0 && !HypothesisHold::other_place(f.place, c.mean, scan_range);
+          return c.weight > 0.0 && !HypothesisHold::other_place(e.place, c.mean, scan_range);
         });
-    return !(seen || (f.refuted && in_belief));
+    return at_best(e.place) || !(seen || (e.refuted && in_belief));
   });
 }
 

@@ -91,7 +91,7 @@ void Localizer::Impl::start_fresh(bool settled) {
   has_held = false;
   belief_places = 0;
   place_anchors.clear();
-  fallen_evidence.clear();
+  place_evidence.clear();
   hold.end();
   motion = make_motion(config);
   stats = UpdateStats{};

@@ -38,7 +38,9 @@ using MotionVariant = std::variant<OdometryModel, OmniModel, AckermannModel>;
 
 // A log Bayes factor below this is "very strong" evidence against a hypothesis (2 ln B < -10 on
 // Kass and Raftery's scale, J. Am. Stat. Assoc. 90, 1995): where the scans have told two places
-// apart (place_draw.cpp, keep_places.cpp).
+// apart (place_draw.cpp, keep_places.cpp). Read on the filter's tempered likelihoods, the
+// evidence its weights carry: a scan's readings are not independent, and the untempered
+// product of their likelihoods overstates what one scan says by the tempering's factor.
 inline constexpr double kVeryStrongEvidence = -5.0;
 
 struct Localizer::Impl {
@@ -90,10 +92,16 @@ struct Localizer::Impl {
   // raised back to a tenth (raise_places), so that look-alike places are not resampled away
   // by the luck of a few hundred particles (the places are judge_focus()'s place_anchors).
   void keep_places(const Pose2& odometry);
-  // Whether the scans since `fallen` fell below a tenth refute it against the best place,
-  // adding this scan's evidence (keep_places.cpp).
-  bool refuted(const PoseEstimate& fallen, const PoseEstimate& best, const Pose2& moved);
-  void forget_risen_places(const Pose2& moved);  // after keep_places: drops stale evidence
+  // The best place matched to the scan, and the scan's log-likelihood there (keep_places).
+  struct BestFit {
+    Pose2 pose;
+    double log_likelihood = 0.0;
+  };
+  [[nodiscard]] BestFit fit_best(const PoseEstimate& best) const;
+  // Whether the scans refute `place` (a cluster at one of the belief's places) against the
+  // best, adding this scan's evidence; `fallen`: below a tenth of the belief (keep_places.cpp).
+  bool refuted(const PoseEstimate& place, const BestFit& best, const Pose2& moved, bool fallen);
+  void forget_places(const Pose2& moved);  // after keep_places: carries and drops evidence
   // This scan's log-likelihood at one pose, untempered, as weigh() gave the particles.
   [[nodiscard]] double scan_log_likelihood(const Pose2& pose) const;
   // Raises the fallen places to a tenth together (one raise lowers every other place).
@@ -163,16 +171,16 @@ struct Localizer::Impl {
   bool one_place = false;
   std::size_t belief_places = 0;     // places_on()'s count, for the next update's resampling
   std::vector<Pose2> place_anchors;  // places_on()'s anchors, for keep_places and the filter
-  // The evidence against each place that has fallen below a tenth (keep_places): where it
-  // was, the tempered log likelihood ratio against the best summed over its scans, the
-  // verdict, and whether it fell again this update.
-  struct FallenPlace {
+  // The evidence against each place beside the best (keep_places): where it was, the
+  // tempered log likelihood ratio against the best summed over its scans, the verdict, and
+  // whether it was judged this update.
+  struct PlaceEvidence {
     Pose2 place;
     double log_ratio = 0.0;
     bool refuted = false;
     bool seen = false;
   };
-  std::vector<FallenPlace> fallen_evidence;
+  std::vector<PlaceEvidence> place_evidence;
   // The places of this update for resample_by_place (empty: the plain draw), each particle's
   // place among them, and their weights before the scan was weighed.
   std::vector<Pose2> even_places;

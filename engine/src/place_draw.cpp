@@ -90,10 +90,13 @@ void Localizer::Impl::place_prior(const Pose2& odometry) {
 void Localizer::Impl::weigh_places() {
   place_weight.clear();
   place_log_bayes.clear();
-  if (even_places.empty()) return;
+  // A scan that explained no particle reset the weights to uniform: no evidence, and the even
+  // draw's counts would read as the places' shares.
+  if (even_places.empty() || degenerate) return;
   place_weight = place_weights();
-  // Place k's Bayes factor against the best place: (W_k / P_k) / (W_best / P_best), its weight
-  // after the scan over before, each over the best's; NaN where a place had no weight.
+  // Place k's Bayes factor against the best place (the heaviest after the scan): (W_k / P_k) /
+  // (W_best / P_best), its weight after the scan over before, each over the best's, in the
+  // filter's tempered weights; NaN where a place had no weight.
   const std::size_t k = even_places.size();
   const std::vector<double>& prior = prior_place_weight;
   const std::vector<double>& post = place_weight;
@@ -119,7 +122,10 @@ void Localizer::Impl::resample_by_place(const KldConfig& per_place) {
   std::transform(place_log_bayes.begin(), place_log_bayes.end(), even.begin(),
                  [](double log_b) { return log_b >= kVeryStrongEvidence; });
   const auto drawn_evenly = static_cast<double>(std::count(even.begin(), even.end(), true));
-  if (drawn_evenly < 2.0) {
+  // Augmented MCL's injection replaces the particles at or below 1/N weight, as after a plain
+  // draw; after an even one those are the lighter places' particles, which it would eat: with
+  // its rates set, the plain draw.
+  if (drawn_evenly < 2.0 || recovery.enabled()) {
     resample_kld_systematic(store, bins, per_place, config.seed, step, config.grain);
     return;
   }

@@ -279,8 +279,9 @@ def longest_runs(states):
 
 
 def check_relocalization(args, browser, profile, work):
-    """The Intel log kidnapped by `mote kidnap`: tracking, lost, one re-localization, uncertain
-    while the new place has not held, then tracking."""
+    """The Intel log kidnapped by `mote kidnap`: tracking, lost, a re-localization, uncertain
+    while the new place has not held (single updates on this run, under the re-localization
+    marks), then tracking."""
     intel = os.path.join(args.data, "intel")
     if not os.path.isfile(os.path.join(intel, "intel.clf")):
         print(f"SKIP the re-localization checks: {intel} is absent")

@@ -3,8 +3,10 @@
 // `tracking` one of them (docs/localization-state.md, "Look-alike places").
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "cli_test_util.hpp"
@@ -48,6 +50,21 @@ fs::path head_of(const fs::path& log, int lines, const fs::path& dir) {
   return dir / "head.clf";
 }
 
+// The reference position at the stamp nearest `stamp` (the reference is a TUM file).
+std::array<double, 2> reference_at(const fs::path& tum, double stamp) {
+  std::ifstream in(tum);
+  std::array<double, 2> best{std::nan(""), std::nan("")};
+  double gap = INFINITY;
+  double t = 0.0;
+  double x = 0.0;
+  double y = 0.0;
+  std::string rest;
+  while (in >> t >> x >> y && std::getline(in, rest)) {
+    if (std::abs(t - stamp) < gap) gap = std::abs(t - stamp), best = {x, y};
+  }
+  return best;
+}
+
 // Global starts with seeds 4 and 42 on two copies of Intel: at the end `uncertain` between two
 // places, and no update more than 1 m off while `tracking`. Before places were resampled in
 // equal numbers (resample_by_place) and every fallen place raised in one update, the luck of
@@ -70,6 +87,17 @@ TEST(Cli, IntelTwiceSideBySideEndsUncertainNeverTrackingTheWrongCopy) {
     EXPECT_NE(report.find("\"final_state\": \"uncertain\""), std::string::npos) << "seed " << seed;
     EXPECT_EQ(json_number(report, "final_places"), 2.0) << "seed " << seed;
     EXPECT_EQ(json_number(report, "updates_over_1m_tracking"), 0.0) << "seed " << seed;
+    // The reported place is the robot's, in one of the copies: the true position, or it moved
+    // by the width of Intel's map (814 cells of 5 cm), not a third place.
+    std::istringstream last(last_line(slurp(out / "trajectory.tum")));
+    double stamp = 0.0;
+    double x = 0.0;
+    double y = 0.0;
+    last >> stamp >> x >> y;
+    const std::array<double, 2> truth = reference_at(data / "intel.gt.tum", stamp);
+    const double off = std::min(std::hypot(x - truth[0], y - truth[1]),
+                                std::hypot(x - truth[0] - 814 * 0.05, y - truth[1]));
+    EXPECT_LT(off, 0.5) << "seed " << seed << " reports (" << x << ", " << y << ")";
   }
 }
 
