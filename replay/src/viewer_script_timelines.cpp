@@ -174,10 +174,17 @@ const std::string_view kViewerScriptTimelines = R"js(
     back.width = canvas.width;
     back.height = canvas.height;
     const g = back.getContext("2d");
-    for (let k = 0; k < n; ++k) {
-      const [x, w] = scale.bar(k);
-      g.fillStyle = STATES[d.state[k]][1];
-      g.fillRect(x, BAND.marks, w, BAND.bar);
+    // The commonest state first, the rarer ones over it: where several updates share a pixel
+    // column, a single uncertain or lost update is not overdrawn by the tracking ones around it.
+    const counts = STATES.map((_, s) => d.state.filter((v) => v === s).length);
+    const order = STATES.map((_, s) => s).sort((a, b) => counts[b] - counts[a]);
+    for (const s of order) {
+      g.fillStyle = STATES[s][1];
+      for (let k = 0; k < n; ++k) {
+        if (d.state[k] !== s) continue;
+        const [x, w] = scale.bar(k);
+        g.fillRect(x, BAND.marks, w, BAND.bar);
+      }
     }
     let relocalizations = 0;
     for (let k = 0; k < n; ++k) {
@@ -185,7 +192,8 @@ const std::string_view kViewerScriptTimelines = R"js(
       ++relocalizations;
       const x = Math.round(scale.bar(k)[0]);
       g.fillStyle = RELOCALIZED;
-      g.fillRect(x - 1, BAND.marks, 2, BAND.bar);
+      // One pixel just before the update's own column, which keeps the state it ended in.
+      g.fillRect(x - 1, BAND.marks, 1, BAND.bar);
       g.beginPath();
       g.moveTo(x - 5, 0);
       g.lineTo(x + 5, 0);

@@ -13,8 +13,8 @@ browser: on the Intel log, opens viewer.html in headless Chromium at three updat
          simulated protanopia, deuteranopia and tritanopia; the trajectory drawn in the tracking
          colour; map axes in metres within the map's extent and a time axis in seconds. In a
          900 px wide window the page must be no wider than the window. On the Intel log kidnapped by
-         `mote kidnap` (tracking, lost, one re-localization): the band shows each state the run
-         holds for two updates in a row (and the run is uncertain at least once), the
+         `mote kidnap` (tracking, lost, one re-localization): the band shows all three states (a
+         single uncertain update among hundreds of tracking ones, and at a re-localization) and the
          re-localization mark, the map the lost and the tracking colours, and at the
          re-localization the page gives the re-localized count of updates.csv.
 size:    the page for the whole log with every update at the particle cap stays under 20 MB.
@@ -269,19 +269,10 @@ def check_narrow(browser, profile, url):
     rect(data, "band-rect")
 
 
-def longest_runs(states):
-    """The longest run of consecutive updates in each state."""
-    runs, length = {}, 0
-    for k, state in enumerate(states):
-        length = length + 1 if k > 0 and states[k - 1] == state else 1
-        runs[state] = max(runs.get(state, 0), length)
-    return runs
-
-
 def check_relocalization(args, browser, profile, work):
     """The Intel log kidnapped by `mote kidnap`: tracking, lost, a re-localization, uncertain
-    while the new place has not held (single updates on this run, under the re-localization
-    marks), then tracking."""
+    while the new place has not held (single updates on this run, one at a re-localization),
+    then tracking."""
     intel = os.path.join(args.data, "intel")
     if not os.path.isfile(os.path.join(intel, "intel.clf")):
         print(f"SKIP the re-localization checks: {intel} is absent")
@@ -322,14 +313,8 @@ def check_relocalization(args, browser, profile, work):
     trajectory = {s: count_colour(image, on_map, colours[s]) for s in ("tracking", "lost")}
     print(f"kidnapped Intel band px by state {shares}, re-localization mark {marks} px; "
           f"trajectory px {trajectory}")
-    # A state the run holds for two updates in a row or more spans at least a pixel column of the
-    # band (about 0.6 px per update here); a single update alone blends into its neighbours, or
-    # lies under a re-localization's 2 px mark (both of this run's uncertain updates do).
-    runs = longest_runs([r["state"] for r in rows])
     for state in STATES:
-        if runs.get(state, 0) >= 2:
-            assert shares[state] >= band[3], f"the band shows no '{state}' ({shares[state]} px)"
-    assert runs.get("uncertain", 0) >= 1, "the kidnapped run was never uncertain"
+        assert shares[state] >= band[3], f"the band shows no '{state}' ({shares[state]} px)"
     assert marks >= 10, "the band does not mark the re-localization"
     assert trajectory["tracking"] >= 100 and trajectory["lost"] >= 30, \
         f"the trajectory's colours: {trajectory} px"
