@@ -15,6 +15,7 @@
 #include "localizer_impl.hpp"
 #include "mote/core/parallel.hpp"
 #include "mote/engine/resample.hpp"
+#include "mote/engine/weights.hpp"
 #include "weight_sums.hpp"
 
 namespace mote {
@@ -146,14 +147,7 @@ void Localizer::Impl::resample_by_place(const KldConfig& per_place) {
   label_places();  // a copy sits where its ancestor did: the same label
   scale_by_place(back);
   // The systematic draw gives each place its share to within a particle: renormalize.
-  const ParticleView p = store.view();
-  const double total =
-      detail::sum_weights(p.size(), 0.0F, [p](std::size_t i) { return p.logw[i]; }).w;
-  if (!(total > 0.0)) return;
-  const auto shift = static_cast<float>(std::log(total));
-  par::for_each_chunk(p.size(), config.grain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) p.logw[i] -= shift;
-  });
+  mote::normalize(store.view(), config.grain);
 }
 
 }  // namespace mote
