@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+
+#include "mote/engine/kld.hpp"
 
 namespace mote {
 namespace {
@@ -28,7 +31,15 @@ Increments increments_of(const Pose2& step) {
 
 }  // namespace
 
-void OdometryNoiseEstimator::Fit::add(double u, double v, double y, double keep) noexcept {
+OdometryNoiseEstimator::OdometryNoiseEstimator(OdometryNoiseConfig config)
+    : config_(config), lower_z_(standard_normal_quantile(1.0 - config.confidence)) {}
+
+void OdometryNoiseEstimator::Fit::add(double u, double v, double e2, double y,
+                                      double keep) noexcept {
+  ue = keep * ue + u * e2;
+  ve = keep * ve + v * e2;
+  u4 = keep * u4 + u * u * u * u;
+  v4 = keep * v4 + v * v * v * v;
   uu = keep * uu + u * u;
   uv = keep * uv + u * v;
   vv = keep * vv + v * v;
@@ -82,9 +93,11 @@ bool OdometryNoiseEstimator::add(const Pose2& odom_before, const Pose2& odom_aft
   const double keep = config_.forgetting;
   const bool rotation_told = fix.rotation <= noise_rot;
   const bool translation_told = fix.translation <= noise_xy;
-  if (rotation_told)
-    rotation_.add(rot_sq, 2.0 * inc.trans_sq, e_theta * e_theta - fix.rotation, keep);
-  if (translation_told) translation_.add(inc.trans_sq, rot_sq, e_xy * e_xy - fix.translation, keep);
+  const double e2_rot = e_theta * e_theta;
+  const double e2_xy = e_xy * e_xy;
+  if (rotation_told) rotation_.add(rot_sq, 2.0 * inc.trans_sq, e2_rot, e2_rot - fix.rotation, keep);
+  if (translation_told)
+    translation_.add(inc.trans_sq, rot_sq, e2_xy, e2_xy - fix.translation, keep);
   if (!rotation_told && !translation_told) return false;
   samples_ = keep * samples_ + 1.0;
   return true;
@@ -98,13 +111,49 @@ OdometryAlphas OdometryNoiseEstimator::noise() const noexcept {
   return a;
 }
 
+double OdometryNoiseEstimator::upper_factor(double count) const noexcept {
+  // A variance estimated from n residuals: n s^2 / sigma^2 ~ chi^2(n), so sigma^2 <= s^2 n /
+  // chi^2_{1-confidence}(n) with the given confidence; the quantile by Wilson and Hilferty
+  // (1931), chi^2_p(n) ~ n (1 - 2/(9n) + z_p sqrt(2/(9n)))^3, which errs low (a wider bound)
+  // for n below 2.
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  if (!(count > 0.0)) return kNone;
+  const double c = 2.0 / (9.0 * count);
+  const double root = 1.0 - c + lower_z_ * std::sqrt(c);
+  return root > 0.0 ? 1.0 / (root * root * root) : kNone;
+}
+
 std::optional<OdometryAlphas> OdometryNoiseEstimator::alphas() const noexcept {
-  if (samples_ < config_.min_samples) return std::nullopt;
-  const OdometryAlphas a = noise();
   const auto bounded = [&](double alpha) {
     return std::clamp(config_.safety * alpha, config_.alpha_min, config_.alpha_max);
   };
-  return OdometryAlphas{bounded(a.alpha1), bounded(a.alpha2), bounded(a.alpha3), bounded(a.alpha4)};
+  if (samples_ >= config_.min_samples) {
+    const OdometryAlphas a = noise();
+    return OdometryAlphas{bounded(a.alpha1), bounded(a.alpha2), bounded(a.alpha3),
+                          bounded(a.alpha4)};
+  }
+  // Before min_samples a term leaves the prior only for the upper confidence bound of the most
+  // it can be: the fit of that term alone (in the joint fit the other term takes a share, and
+  // from a few residuals the least squares may give it all to one of them). The bound is on
+  // the residuals' whole variance; the fixes' share (ue - uy) is known and comes off after it.
+  bool answered = false;
+  const auto vouched = [&](double ue, double uy, double uu, double count, double prior) {
+    const double factor = upper_factor(count);
+    const double alone = std::max(0.0, (factor * ue - (ue - uy)) / uu);
+    const double upper = config_.safety * alone;
+    if (!std::isfinite(factor) || !(upper < prior)) return prior;
+    answered = true;
+    return std::clamp(upper, config_.alpha_min, config_.alpha_max);
+  };
+  const OdometryAlphas& prior = config_.prior;
+  const Fit& r = rotation_;
+  const Fit& t = translation_;
+  const OdometryAlphas a{vouched(r.ue, r.uy, r.uu, r.count_u(), prior.alpha1),
+                         vouched(r.ve, r.vy, r.vv, r.count_v(), prior.alpha2),
+                         vouched(t.ue, t.uy, t.uu, t.count_u(), prior.alpha3),
+                         vouched(t.ve, t.vy, t.vv, t.count_v(), prior.alpha4)};
+  if (!answered) return std::nullopt;
+  return a;
 }
 
 }  // namespace mote

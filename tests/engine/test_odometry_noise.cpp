@@ -11,9 +11,10 @@ namespace {
 
 // Steps of a robot that drives and turns, and estimates that differ from the odometry by
 // table 5.6's noise with the given alphas.
-OdometryNoiseEstimator fitted(const OdometryAlphas& truth, int steps, OdometryNoiseConfig config) {
+OdometryNoiseEstimator fitted(const OdometryAlphas& truth, int steps, OdometryNoiseConfig config,
+                              unsigned seed = 5) {
   OdometryNoiseEstimator estimator(config);
-  std::mt19937 gen(5);
+  std::mt19937 gen(seed);
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   Pose2 odom;
@@ -54,14 +55,59 @@ TEST(OdometryNoiseEstimator, RecoversTheAlphasOfItsResiduals) {
   EXPECT_LT(a->alpha4, 0.05);
 }
 
-TEST(OdometryNoiseEstimator, AppliesSafetyAndBoundsAndWaitsForSamples) {
+TEST(OdometryNoiseEstimator, AppliesSafetyAndBounds) {
   const OdometryAlphas truth{0.05, 0.01, 0.02, 0.005};
   OdometryNoiseConfig config{.safety = 2.0, .alpha_min = 0.05, .alpha_max = 0.08};
-  EXPECT_FALSE(fitted(truth, 10, config).alphas().has_value());
+  EXPECT_FALSE(OdometryNoiseEstimator(config).alphas().has_value());
   const auto a = fitted(truth, 2000, config).alphas();
   ASSERT_TRUE(a.has_value());
   EXPECT_EQ(a->alpha1, 0.08);  // 2 x 0.05 capped
   EXPECT_EQ(a->alpha4, 0.05);  // 2 x 0.005 (plus lateral noise) raised to the floor
+}
+
+// Before min_samples an alpha is the upper end of a 95 % confidence interval: over many short
+// runs it falls below the true alpha in at most about 5 % of them (fewer, since each term's
+// bound is its fit alone), and it tightens as residuals come in.
+TEST(OdometryNoiseEstimator, BeforeMinSamplesAnAlphaIsAnUpperConfidenceBound) {
+  const OdometryAlphas truth{0.02, 0.005, 0.01, 0.002};
+  const OdometryNoiseConfig config{
+      .forgetting = 1.0, .safety = 1.0, .alpha_min = 0.0, .prior = {1.0, 1.0, 1.0, 1.0}};
+  constexpr int kRuns = 200;
+  int below1 = 0;
+  int below3 = 0;
+  double sum_at_4 = 0.0;
+  double sum_at_15 = 0.0;
+  for (int run = 0; run < kRuns; ++run) {
+    const auto seed = static_cast<unsigned>(100 + run);
+    const auto early = fitted(truth, 4, config, seed).alphas();
+    const auto later = fitted(truth, 15, config, seed).alphas();
+    ASSERT_TRUE(later.has_value());
+    // Four residuals may vouch for nothing below the prior yet: then alphas() keeps it.
+    sum_at_4 += early.has_value() ? early->alpha1 : config.prior.alpha1;
+    below1 += later->alpha1 < truth.alpha1 ? 1 : 0;
+    below3 += later->alpha3 < truth.alpha3 ? 1 : 0;
+    sum_at_15 += later->alpha1;
+  }
+  EXPECT_LE(below1, kRuns / 20);
+  EXPECT_LE(below3, kRuns / 20);
+  EXPECT_LT(sum_at_15, 0.7 * sum_at_4);
+  EXPECT_LT(sum_at_15 / kRuns, 10.0 * truth.alpha1);  // a bound, but not a vacuous one
+}
+
+// The prior stays wherever the residuals do not vouch for less, and no residual: no answer.
+TEST(OdometryNoiseEstimator, BeforeMinSamplesNoisierOdometryKeepsThePrior) {
+  const OdometryAlphas truth{0.3, 0.3, 0.3, 0.3};
+  const OdometryNoiseConfig config{.safety = 1.0};  // prior: amcl's 0.2
+  EXPECT_FALSE(OdometryNoiseEstimator(config).alphas().has_value());
+  const auto a = fitted(truth, 10, config).alphas();
+  if (a.has_value()) {
+    EXPECT_EQ(a->alpha1, 0.2);
+    EXPECT_EQ(a->alpha3, 0.2);
+  }
+  const auto quiet = fitted({0.001, 0.001, 0.001, 0.001}, 10, config).alphas();
+  ASSERT_TRUE(quiet.has_value());
+  EXPECT_LT(quiet->alpha1, 0.05);
+  EXPECT_LT(quiet->alpha3, 0.05);
 }
 
 TEST(OdometryNoiseEstimator, LeavesRelocalizationJumpsOut) {

@@ -109,9 +109,10 @@ struct LocalizerConfig {
   double alpha4 = 0.2;                  ///< translation noise from rotation
   double alpha5 = 0.2;                  ///< strafe noise from translation (omni only)
   double wheelbase = 0.5;               ///< m, Ackermann only
-  /// Fit alpha1..alpha4 online from the filter's corrections (odometry_noise.hpp) once 20
-  /// updates have been seen, starting from the values above (diff model only: omni and
-  /// Ackermann read their alphas differently; nav2: off).
+  /// Fit alpha1..alpha4 online from the filter's corrections (odometry_noise.hpp), starting
+  /// from the values above: each leaves them as soon as the upper end of its 95 % confidence
+  /// interval is below them, and follows the fit alone after 20 updates (diff model only: omni
+  /// and Ackermann read their alphas differently; nav2: off).
   bool adaptive_motion_noise = true;
   /// adaptive_motion_noise: the variance factor on the fitted noise (OdometryNoiseConfig::safety,
   /// which says why 4). `mote calibrate` chooses it per log.

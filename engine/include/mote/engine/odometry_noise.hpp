@@ -35,9 +35,15 @@ struct OdometryNoiseConfig {
   double safety = 4.0;
   double alpha_min = 0.002;  ///< bounds of every fitted alpha
   double alpha_max = 1.0;
-  double min_samples = 20.0;  ///< effective samples (after forgetting) before alphas() answers
-  /// The noise assumed until min_samples residuals have been fitted (the config's alphas): it
-  /// sets the gate below.
+  /// Effective samples (after forgetting) after which the fit answers alone. Before that an
+  /// alpha leaves the prior only for the upper bound of its confidence interval (below).
+  double min_samples = 20.0;
+  /// One-sided confidence of the upper bound on each fitted alpha: the fit is read at the top
+  /// of its interval, so that a fit from a few residuals is taken only as far as they vouch for
+  /// it (Kish's effective count of the residuals that carried the term, a chi-square bound).
+  double confidence = 0.95;
+  /// The noise assumed until the data vouch for less (the config's alphas): it also sets the
+  /// gate below until min_samples.
   OdometryAlphas prior{};
   /// A residual farther than this many standard deviations of what the current fit (or the
   /// prior) and the poses' own uncertainty predict is a jump of the estimate (a cluster
@@ -62,7 +68,8 @@ struct FixUncertainty {
 /// margin. The refined poses depend on the scan and the map only.
 class OdometryNoiseEstimator {
  public:
-  explicit OdometryNoiseEstimator(OdometryNoiseConfig config = {}) : config_(config) {}
+  /// Throws ConfigError unless config.confidence is in (0, 1).
+  explicit OdometryNoiseEstimator(OdometryNoiseConfig config = {});
 
   /// One update's evidence: odometry from odom_before to odom_after while the fixed pose moved
   /// from estimate_before to estimate_after, whose uncertainty is `fix`. Returns false when
@@ -70,8 +77,9 @@ class OdometryNoiseEstimator {
   bool add(const Pose2& odom_before, const Pose2& odom_after, const Pose2& estimate_before,
            const Pose2& estimate_after, const FixUncertainty& fix = {}) noexcept;
 
-  /// safety times the fitted alphas, within [alpha_min, alpha_max]; nullopt until
-  /// min_samples residuals have been added.
+  /// Per alpha, safety times the upper confidence bound of its fit, within [alpha_min,
+  /// alpha_max]; before min_samples the prior wherever that bound is not below it. nullopt
+  /// until a residual has been added or while every alpha is still the prior.
   [[nodiscard]] std::optional<OdometryAlphas> alphas() const noexcept;
   /// The fitted alphas without the safety factor and bounds, or the prior before min_samples.
   [[nodiscard]] OdometryAlphas noise() const noexcept;
@@ -80,14 +88,24 @@ class OdometryNoiseEstimator {
   void reset() noexcept { *this = OdometryNoiseEstimator(config_); }
 
  private:
-  // Normal equations of y ~ p u + q v, accumulated with forgetting.
+  // Normal equations of y ~ p u + q v, accumulated with forgetting; y is the squared residual e2
+  // less the fixes' share.
   struct Fit {
     double uu = 0, uv = 0, vv = 0, uy = 0, vy = 0;
-    void add(double u, double v, double y, double keep) noexcept;
+    double ue = 0, ve = 0;  // sums of u e2, v e2: the bounds before min_samples
+    double u4 = 0, v4 = 0;  // sums of u^4, v^4: the effective counts below
+    void add(double u, double v, double e2, double y, double keep) noexcept;
     void solve(double& p, double& q) const noexcept;
+    // Kish's effective count of the residuals behind each term, (sum w)^2 / sum w^2 with the
+    // least-squares weights w = u^2 (a term one turn determined counts once).
+    [[nodiscard]] double count_u() const noexcept { return u4 > 0.0 ? uu * uu / u4 : 0.0; }
+    [[nodiscard]] double count_v() const noexcept { return v4 > 0.0 ? vv * vv / v4 : 0.0; }
   };
 
+  [[nodiscard]] double upper_factor(double count) const noexcept;
+
   OdometryNoiseConfig config_;
+  double lower_z_;  // the standard normal quantile at 1 - confidence
   Fit rotation_;
   Fit translation_;
   double samples_ = 0.0;
