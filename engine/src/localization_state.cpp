@@ -24,24 +24,47 @@ LocalizationState LocalizationMonitor::update(double see_through, double hit_sha
   smoothed_ = started_ ? smoothed_ + config_.smoothing * (misfit - smoothed_) : misfit;
   started_ = true;
   if (settling_ > 0) --settling_;
-  if (smoothed_ > config_.lost_misfit) {
+  if (smoothed_ > lost_bound()) {
     state_ = LocalizationState::kLost;
   } else if (one_place && settling_ == 0) {
     state_ = LocalizationState::kTracking;
   } else {
     state_ = LocalizationState::kUncertain;
   }
+  learn();
   return state_;
+}
+
+void LocalizationMonitor::learn() noexcept {
+  // A point once the average spans only tracked scans (its window in a row), and only below
+  // lost_misfit: points the learned bound itself let through would let it creep up on a wrong
+  // map, whose scans fit now and then.
+  tracking_run_ = state_ == LocalizationState::kTracking ? tracking_run_ + 1 : 0;
+  if (tracking_run_ <= window() || !(smoothed_ <= config_.lost_misfit)) return;
+  chart_n_ += 1.0;
+  const double delta = smoothed_ - chart_mean_;
+  chart_mean_ += delta / chart_n_;
+  chart_m2_ += delta * (smoothed_ - chart_mean_);
+}
+
+double LocalizationMonitor::lost_bound() const noexcept {
+  if (chart_n_ < config_.chart_min_updates || chart_n_ < 2.0) return config_.lost_misfit;
+  const double sd = std::sqrt(chart_m2_ / (chart_n_ - 1.0));
+  return std::max(config_.lost_misfit, chart_mean_ + config_.chart_sigmas * sd);
+}
+
+int LocalizationMonitor::window() const noexcept {
+  constexpr double kLongestWindow = 1000.0;  // a smoothing of 0 (never averaging) is no window
+  return config_.smoothing > 0.0
+             ? static_cast<int>(std::min(std::ceil(1.0 / config_.smoothing), kLongestWindow))
+             : 0;
 }
 
 void LocalizationMonitor::reset_after_relocalization() noexcept {
   reset();
   // The average's window, about 1 / smoothing updates: one scan that fits a fresh place is the
   // chance a global set offers at every look-alike place, not a place that has held.
-  constexpr double kLongestSettling = 1000.0;  // a smoothing of 0 (never averaging) is no window
-  settling_ = config_.smoothing > 0.0
-                  ? static_cast<int>(std::min(std::ceil(1.0 / config_.smoothing), kLongestSettling))
-                  : 0;
+  settling_ = window();
 }
 
 }  // namespace mote

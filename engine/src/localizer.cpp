@@ -82,7 +82,7 @@ void Localizer::Impl::start_fresh(bool settled) {
   degenerate = false;
   updates_since_resample = 0;
   recovery.reset();
-  monitor.reset();
+  monitor.forget();
   reset_relocalization(settled);
   focus_judged = false;
   odometry_noise.reset();
@@ -103,6 +103,7 @@ void Localizer::Impl::start_fresh(bool settled) {
   // publishing after a reset would otherwise send), and the state is the monitor's fresh one.
   estimate.refined = ScanMatch{.pose = estimate.best().mean};
   stats.state = monitor.state();
+  stats.lost_bound = monitor.lost_bound();
 }
 
 void Localizer::initialize(const Pose2& mean, const Eigen::Matrix3d& covariance) {

@@ -397,6 +397,7 @@ void Localizer::Impl::judge_localization() {
   }
   stats.state = monitor.update(stats.see_through, stats.hit_share, one_place);
   stats.misfit = monitor.smoothed();
+  stats.lost_bound = monitor.lost_bound();
   // The reported estimate: the match where the belief supports it, else the hypothesis itself,
   // unrefined and without a covariance (not a fix the odometry-noise fit may use).
   // A match stopped by its iteration or damping cap is not a fix: neither the estimate nor the

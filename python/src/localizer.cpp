@@ -85,6 +85,9 @@ void bind_stats(py::module_& m) {
       .def_readonly("see_through", &UpdateStats::see_through,
                     "share of beams seeing through a mapped obstacle (refined pose)")
       .def_readonly("misfit", &UpdateStats::misfit, "the smoothed misfit the state comes from")
+      .def_readonly("lost_bound", &UpdateStats::lost_bound,
+                    "the misfit above which the state is lost (lost_misfit, or what the map "
+                    "and laser learned while tracking)")
       .def_readonly("tempering", &UpdateStats::tempering, "likelihood exponent tau")
       .def_readonly("tempering_trials", &UpdateStats::tempering_trials)
       .def_readonly("log_evidence", &UpdateStats::log_evidence)

@@ -27,8 +27,7 @@ void write_updates_csv(const std::filesystem::path& file, const ReplayResult& re
   out << "stamp,particles,weighed,beams,blocked_beams,ess,tempering,log_evidence,"
          "injected,relocalized,resampled,alpha1,alpha2,alpha3,alpha4,total_ms,state,hit_share,"
          "see_through,misfit,refined_x,refined_y,refined_theta,mean_x,mean_y,mean_theta,places,"
-         "held,"
-         "switched\n";
+         "held,switched,lost_bound\n";
   out.precision(10);
   for (std::size_t k = 0; k < result.updates.size(); ++k) {
     const UpdateRecord& u = result.updates[k];
@@ -44,7 +43,7 @@ void write_updates_csv(const std::filesystem::path& file, const ReplayResult& re
         << ',' << u.hit_share << ',' << u.see_through << ',' << u.misfit << ',' << u.refined.x
         << ',' << u.refined.y << ',' << u.refined.theta << ',' << mean.x << ',' << mean.y << ','
         << mean.theta << ',' << u.places << ',' << (u.held ? 1 : 0) << ',' << (u.switched ? 1 : 0)
-        << '\n';
+        << ',' << u.lost_bound << '\n';
   }
   if (!out.good()) throw Error(file.string() + ": cannot write");
 }

@@ -250,6 +250,7 @@ void write_statistics(std::ostream& out, const ReplayResult& result) {
   write_array(out, "tempering", n, [&](std::size_t k) { return u[k].tempering; });
   write_array(out, "state", n, [&](std::size_t k) { return state_code(u[k].state); });
   write_array(out, "misfit", n, [&](std::size_t k) { return u[k].misfit; });
+  write_array(out, "lost_bound", n, [&](std::size_t k) { return u[k].lost_bound; });
   const std::vector<double> errors = position_errors(result);
   write_array(out, "error_m", n, [&](std::size_t k) { return errors[k]; });
 }

@@ -38,7 +38,7 @@ const std::string_view kViewerScriptHead = R"js("use strict";
                   ["estimate_ms", "#9c755f", "estimate"]];
   // log: a logarithmic value axis, for what a global set (a global start or a re-localization,
   // 10-100 times the tracking set) would otherwise flatten, from 1 with fromOne; limit: a data
-  // key drawn as a dashed line in the lost colour.
+  // key (one value, or one per update) drawn as a dashed line in the lost colour.
   const TIMELINES = [
     { label: "ms per update", stack: PHASES, log: true },
     { series: [["particles", "#285aff", "particles after the update"]], log: true },
@@ -47,7 +47,7 @@ const std::string_view kViewerScriptHead = R"js("use strict";
       stack: [["relocalized", RELOCALIZED, "re-localization (a global set)", "re-localized"],
               ["injected", "#76b7b2", "injected (augmented MCL)", "injected"]] },
     { series: [["misfit", "#777777", "misfit (smoothed), lost above the dashed line"]],
-      limit: "lost_misfit" },
+      limit: "lost_bound" },
     { series: [["tempering", "#edc948", "tempering exponent"]] },
     { series: [["error_m", "#dc1414", "position error vs reference, m"]] },
   ];

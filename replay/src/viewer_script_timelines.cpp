@@ -51,13 +51,41 @@ const std::string_view kViewerScriptTimelines = R"js(
     const sorted = values.filter((v) => v !== null).sort((x, y) => x - y);
     if (sorted.length === 0) return null;
     let top = sorted[Math.min(sorted.length - 1, Math.floor(0.99 * sorted.length))];
-    if (spec.limit) top = Math.max(top, 1.25 * d[spec.limit]);
+    if (spec.limit) top = Math.max(top, 1.25 * limitMax(d[spec.limit]));
     if (!(top > 0)) top = Math.max(sorted[sorted.length - 1], 1);
     const t = niceTicks(0, top, Math.max(1, Math.floor(height / 30)));
     const clipped = sorted[sorted.length - 1] > top;
     return { ticks: t.values.map((v, i) => [v, t.labels[i]]),
              note: clipped ? "axis to " + format(top) + ", p99; taller clipped" : "",
              y: (v) => height - 1 - Math.min(1, v / top) * (height - 3) };
+  }
+
+  // A limit is one value for the run or one per update (the learned lost bound).
+  function limitMax(limit) {
+    if (!Array.isArray(limit)) return limit;
+    let top = 0;
+    for (const v of limit) if (v > top) top = v;
+    return top;
+  }
+
+  // The limit as a dashed line in the lost colour, stepping where a per-update limit moves.
+  function drawLimit(g, scale, axis, limit, n) {
+    g.strokeStyle = STATES[2][1];
+    g.setLineDash([5, 3]);
+    g.beginPath();
+    if (!Array.isArray(limit)) {
+      g.moveTo(scale.left, Math.round(axis.y(limit)) + 0.5);
+      g.lineTo(scale.left + scale.width, Math.round(axis.y(limit)) + 0.5);
+    } else {
+      for (let k = 0; k < n; ++k) {
+        const [x, w] = scale.bar(k), y = Math.round(axis.y(limit[k])) + 0.5;
+        if (k === 0) g.moveTo(x, y);
+        else g.lineTo(x, y);
+        g.lineTo(x + w, y);
+      }
+    }
+    g.stroke();
+    g.setLineDash([]);
   }
 
   // Light lines at the time ticks and the value ticks, with the values in the left margin.
@@ -106,15 +134,7 @@ const std::string_view kViewerScriptTimelines = R"js(
           base -= h;
         }
       }
-      if (spec.limit) {
-        g.strokeStyle = STATES[2][1];
-        g.setLineDash([5, 3]);
-        g.beginPath();
-        g.moveTo(scale.left, Math.round(axis.y(d[spec.limit])) + 0.5);
-        g.lineTo(scale.left + scale.width, Math.round(axis.y(d[spec.limit])) + 0.5);
-        g.stroke();
-        g.setLineDash([]);
-      }
+      if (spec.limit) drawLimit(g, scale, axis, d[spec.limit], n);
     }
     const ctx = canvas.getContext("2d");
     onClick(canvas, scale, onPick);

@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -49,6 +50,49 @@ TEST(LocalizationMonitor, SmoothsTheMisfitAndNamesTheState) {
   EXPECT_EQ(m.update(nan, nan, true), LocalizationState::kUncertain);
   EXPECT_EQ(m.smoothed(), 0.0);
   EXPECT_STREQ(name_of(LocalizationState::kUncertain), "uncertain");
+}
+
+// Scans whose misfit, while surely tracking, rises and falls between 0.4 and 0.6 over tens of
+// updates (a map with its glass drawn as walls, passed now and then): the chart learns it and
+// moves the bound up, so scans at 0.65 no longer read lost; a scan that fits nothing still
+// does, and forget() starts from lost_misfit again.
+TEST(LocalizationMonitor, TheBoundMovesUpToWhatTheMapShowsWhileTracking) {
+  LocalizationMonitor m({.smoothing = 0.3, .lost_misfit = 0.6});
+  const auto feed = [&](double misfit) { return m.update(misfit, 1.0, true); };
+  EXPECT_EQ(feed(0.65), LocalizationState::kLost);  // nothing learned: lost_misfit
+  m.forget();
+  for (int k = 0; k < 200; ++k) {
+    EXPECT_NE(feed(0.5 + 0.1 * std::sin(k / 10.0)), LocalizationState::kLost) << k;
+  }
+  EXPECT_GT(m.lost_bound(), 0.6);
+  EXPECT_LT(m.lost_bound(), 0.8);
+  for (int k = 0; k < 10; ++k) EXPECT_EQ(feed(0.65), LocalizationState::kTracking);
+  for (int k = 0; k < 10; ++k) feed(1.4);
+  EXPECT_EQ(m.state(), LocalizationState::kLost);
+  // A re-localization keeps what was learned of the map; a new initialization does not.
+  const double learned = m.lost_bound();
+  m.reset_after_relocalization();
+  EXPECT_EQ(m.lost_bound(), learned);
+  m.forget();
+  EXPECT_EQ(m.lost_bound(), 0.6);
+}
+
+// The chart learns only from settled tracking below lost_misfit: a belief that never settles
+// on one place, or a map that fits now and then at 0.7-0.9 (another building's), leaves the
+// bound at lost_misfit; a clean map's low misfit never lowers it.
+TEST(LocalizationMonitor, TheBoundNeverLearnsFromWhatItWouldCallLost) {
+  LocalizationMonitor uncertain({.lost_misfit = 0.6});
+  for (int k = 0; k < 200; ++k) uncertain.update(0.55, 1.0, false);
+  EXPECT_EQ(uncertain.lost_bound(), 0.6);
+  LocalizationMonitor wrong({.lost_misfit = 0.6});
+  std::mt19937 gen(4);
+  std::uniform_real_distribution<double> misfit(0.7, 0.9);
+  for (int k = 0; k < 500; ++k) wrong.update(misfit(gen), 1.0, true);
+  EXPECT_EQ(wrong.lost_bound(), 0.6);
+  EXPECT_EQ(wrong.state(), LocalizationState::kLost);
+  LocalizationMonitor clean({.lost_misfit = 0.6});
+  for (int k = 0; k < 200; ++k) clean.update(0.05 + 0.01 * (k % 5), 1.0, true);
+  EXPECT_EQ(clean.lost_bound(), 0.6);
 }
 
 class StateOnIntel : public ::testing::Test {

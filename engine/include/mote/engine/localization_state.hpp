@@ -27,7 +27,7 @@
 /// docs/localization-state.md gives the measurements behind the bound: at the true pose the
 /// misfit of every shared log with reference poses and of the DIS and ROS 2 recordings stays
 /// below it on every update; on Wean (a map drawn years before its log, doors closed) it is
-/// above it on 11-12 % of the updates; with another building's map it is above it on 76-100 %.
+/// above it on 4 % of the updates; with another building's map it is above it on 84-100 %.
 
 #include <cstdint>
 
@@ -48,8 +48,19 @@ struct LocalizationStateConfig {
   /// Rate of the exponential average of the misfit: each update moves it this share of the way
   /// to the new scan's (about the last 1 / rate updates count).
   double smoothing = 0.3;
-  /// The smoothed misfit above which the filter is lost (see the file comment).
+  /// The smoothed misfit above which the filter is lost (see the file comment), until the
+  /// control chart below has learned this map and laser.
   double lost_misfit = 0.6;
+  /// The control chart (Shewhart's limits on the smoothed misfit, as in Roberts' EWMA chart):
+  /// from the smoothed misfits of settled tracking below lost_misfit, once there are
+  /// chart_min_updates of them, lost is above max(lost_misfit, mean + chart_sigmas sd). A map
+  /// drawn with its glass or doors closed, or outdoors among vegetation, fits worse everywhere
+  /// at the true pose than a clean map does; the bound then moves up by what that map and laser
+  /// show while surely tracking, never below lost_misfit.
+  double chart_sigmas = 3.0;
+  /// Points before the chart's limits are used: Montgomery's 20-25 samples for a chart's
+  /// trial limits (Introduction to Statistical Quality Control, ch. 6).
+  int chart_min_updates = 25;
 };
 
 /// The smoothed misfit and the state it gives.
@@ -63,14 +74,18 @@ class LocalizationMonitor {
   /// connected cluster the size of the building, is not); a NaN share (no reading with an
   /// endpoint) leaves the state as it was.
   LocalizationState update(double see_through, double hit_share, bool one_place) noexcept;
-  /// Forgets the average and the state (after initialization or re-localization): the next
-  /// scan starts both afresh, and until then the state is uncertain.
+  /// Forgets the average and the state (after a re-localization): the next scan starts both
+  /// afresh, and until then the state is uncertain. The chart stays: it describes the map and
+  /// the laser, not where the belief is.
   void reset() noexcept {
     started_ = false;
     smoothed_ = 0.0;
     settling_ = 0;
+    tracking_run_ = 0;
     state_ = LocalizationState::kUncertain;
   }
+  /// reset(), and the chart too (a new initialization starts from nothing learned).
+  void forget() noexcept { *this = LocalizationMonitor(config_); }
   /// reset(), and no `tracking` before the average has seen its window (ceil(1 / smoothing)
   /// updates): after a re-localization, one scan that fits a fresh place read `tracking` at a
   /// wrong place 2 m from the kidnapped Intel robot, and the summary counted that place as
@@ -78,15 +93,26 @@ class LocalizationMonitor {
   void reset_after_relocalization() noexcept;
 
   [[nodiscard]] double smoothed() const noexcept { return smoothed_; }
+  /// The smoothed misfit above which the state is lost: lost_misfit, or the chart's limit once
+  /// learned and above it.
+  [[nodiscard]] double lost_bound() const noexcept;
   [[nodiscard]] LocalizationState state() const noexcept { return state_; }
   [[nodiscard]] const LocalizationStateConfig& config() const noexcept { return config_; }
 
  private:
+  void learn() noexcept;
+  [[nodiscard]] int window() const noexcept;  // ceil(1 / smoothing) updates
+
   LocalizationStateConfig config_;
   double smoothed_ = 0.0;
   bool started_ = false;
-  int settling_ = 0;  // updates before `tracking` is possible again
+  int settling_ = 0;      // updates before `tracking` is possible again
+  int tracking_run_ = 0;  // updates in a row tracking
   LocalizationState state_ = LocalizationState::kUncertain;
+  // The chart's points (Welford's running mean and sum of squared deviations).
+  double chart_n_ = 0.0;
+  double chart_mean_ = 0.0;
+  double chart_m2_ = 0.0;
 };
 
 }  // namespace mote

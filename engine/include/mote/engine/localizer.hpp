@@ -124,6 +124,9 @@ struct UpdateStats {
   /// see_through + (1 - hit_share) averaged over the last updates: what the state is decided
   /// from (localization_state.hpp).
   double misfit = 0.0;
+  /// The misfit above which the state is lost: lost_misfit, or higher where the map and laser
+  /// fit worse while surely tracking (LocalizationMonitor::lost_bound).
+  double lost_bound = 0.6;
   /// Whether the refined estimate is the match: it converged and the belief supported it
   /// (LocalizationEstimate::refined); false when the gate or convergence refused it, or the
   /// scan had no endpoint.

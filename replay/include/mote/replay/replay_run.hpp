@@ -75,6 +75,7 @@ struct UpdateRecord {
   double hit_share = 0.0;                                   ///< UpdateStats::hit_share
   double see_through = 0.0;                                 ///< UpdateStats::see_through
   double misfit = 0.0;                                      ///< UpdateStats::misfit
+  double lost_bound = 0.6;                                  ///< UpdateStats::lost_bound
   std::size_t places = 0;                                   ///< UpdateStats::places
   bool held = false;      ///< UpdateStats::held: the reported pose stayed on the tracked place
   bool switched = false;  ///< UpdateStats::switched: another place took the reported pose over
