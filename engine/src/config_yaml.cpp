@@ -139,6 +139,7 @@ const std::vector<Key>& keys() {
         field<double>("tracking_tempering", kNum, &LocalizerConfig::tracking_tempering),
         field<double>("global_particles_per_bin", kNum, &LocalizerConfig::global_particles_per_bin),
         field<double>("lost_misfit", kNum, &LocalizerConfig::lost_misfit),
+        field<bool>("lost_misfit_learned", kBool, &LocalizerConfig::lost_misfit_learned),
         field<bool>("relocalize_when_lost", kBool, &LocalizerConfig::relocalize_when_lost),
         field<bool>("unknown_cells_block_rays", kBool, &LocalizerConfig::unknown_cells_block_rays),
         enum_key(

@@ -39,7 +39,9 @@ void LocalizationMonitor::learn() noexcept {
   // A point once the average spans only tracked scans (its window in a row), and only below
   // lost_misfit: points the learned bound itself let through would let it creep up on a wrong
   // map, whose scans fit now and then.
-  tracking_run_ = state_ == LocalizationState::kTracking ? tracking_run_ + 1 : 0;
+  // Counted to one past the window only (a run of years would overflow an int).
+  tracking_run_ =
+      state_ == LocalizationState::kTracking ? std::min(tracking_run_ + 1, window() + 1) : 0;
   if (tracking_run_ <= window() || !(smoothed_ <= config_.lost_misfit)) return;
   chart_n_ += 1.0;
   const double delta = smoothed_ - chart_mean_;
@@ -48,9 +50,10 @@ void LocalizationMonitor::learn() noexcept {
 }
 
 double LocalizationMonitor::lost_bound() const noexcept {
-  if (chart_n_ < config_.chart_min_updates || chart_n_ < 2.0) return config_.lost_misfit;
+  const double floor = config_.lost_misfit;
+  if (!config_.learn || chart_n_ < config_.chart_min_updates || chart_n_ < 2.0) return floor;
   const double sd = std::sqrt(chart_m2_ / (chart_n_ - 1.0));
-  return std::max(config_.lost_misfit, chart_mean_ + config_.chart_sigmas * sd);
+  return std::clamp(chart_mean_ + config_.chart_sigmas * sd, floor, config_.chart_ceiling * floor);
 }
 
 int LocalizationMonitor::window() const noexcept {

@@ -175,6 +175,7 @@ bool Localizer::update(const Pose2& odometry, const LaserScan& scan) {
   Impl& s = *impl_;
   const auto start = Clock::now();
   s.stats = UpdateStats{};
+  s.stats.lost_bound = s.monitor.lost_bound();
   s.stats.step = s.step;
   s.stats.particles = s.store.size();
   if (!s.initialized) throw Error("Localizer::update called before initialize()");

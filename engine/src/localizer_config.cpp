@@ -111,6 +111,7 @@ LocalizerConfig nav2_defaults() {
   c.adaptive_motion_noise = false;
   c.unmapped_obstacle_filter = false;
   c.relocalize_when_lost = false;
+  c.lost_misfit_learned = false;
   c.unknown_cells_block_rays = true;
   c.ray_casting = RayCasting::kExact;  // amcl's map_calc_range casts every ray
   // amcl's formulas: 1 + sum pz^3 for both models, a resample at every update

@@ -101,7 +101,8 @@ Localizer::Impl::Impl(std::shared_ptr<const OccupancyGrid> grid, LocalizerConfig
       bins(map.bounds(), config.kld_bin_xy, config.kld_bin_xy, config.kld_bin_theta),
       recovery(
           {.alpha_slow = config.recovery_alpha_slow, .alpha_fast = config.recovery_alpha_fast}),
-      monitor(LocalizationStateConfig{.lost_misfit = config.lost_misfit}),
+      monitor(LocalizationStateConfig{.lost_misfit = config.lost_misfit,
+                                      .learn = config.lost_misfit_learned}),
       odometry_noise(OdometryNoiseConfig{
           .safety = config.motion_noise_margin,
           .prior = {config.alpha1, config.alpha2, config.alpha3, config.alpha4}}),

@@ -32,6 +32,7 @@ namespace {
   X(recovery_alpha_slow) \
   X(recovery_alpha_fast) \
   X(lost_misfit) \
+  X(lost_misfit_learned) \
   X(relocalize_when_lost) \
   X(update_min_d) \
   X(update_min_a) \

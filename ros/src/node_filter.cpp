@@ -152,7 +152,8 @@ void Node::Impl::process(const ReadyScan& scan) {
   if (ran && u.state != reported_state) {
     reported_state = u.state;
     warnings.notice("t " + std::to_string(f.stamp) + " s: " + name_of(u.state) + " (misfit " +
-                    std::to_string(u.misfit) + ", " + std::to_string(u.particles) + " particles, " +
+                    std::to_string(u.misfit) + " against " + std::to_string(u.lost_bound) + ", " +
+                    std::to_string(u.particles) + " particles, " +
                     std::to_string(filter->estimate().clusters.size()) + " clusters)");
   }
   const std::lock_guard lock(mutex);

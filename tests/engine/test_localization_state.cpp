@@ -95,6 +95,38 @@ TEST(LocalizationMonitor, TheBoundNeverLearnsFromWhatItWouldCallLost) {
   EXPECT_EQ(clean.lost_bound(), 0.6);
 }
 
+// What the chart learns from, each guard on its own: with smoothed misfits above lost_misfit
+// while tracking under a learned bound (they would move it on), with tracking runs no longer
+// than the average's window (its value still carries the scans before), and with tracking that
+// alternates clean rooms and a glassy wing (a wide spread, held at the ceiling).
+TEST(LocalizationMonitor, TheChartLearnsOnlyFromSettledTrackingAndStaysUnderItsCeiling) {
+  const auto glassy = [](int k) { return 0.5 + 0.1 * std::sin(k / 10.0); };
+  LocalizationMonitor learned({.smoothing = 0.3, .lost_misfit = 0.6});
+  for (int k = 0; k < 200; ++k) learned.update(glassy(k), 1.0, true);
+  ASSERT_GT(learned.lost_bound(), 0.65);
+  // The average passes below 0.6 on its way to 0.65 (those points count); from there on none.
+  for (int k = 0; k < 20; ++k) learned.update(0.65, 1.0, true);
+  ASSERT_GT(learned.smoothed(), 0.6);
+  const double bound = learned.lost_bound();
+  for (int k = 0; k < 200; ++k) learned.update(0.65, 1.0, true);
+  EXPECT_EQ(learned.state(), LocalizationState::kTracking);
+  EXPECT_EQ(learned.lost_bound(), bound);
+
+  LocalizationMonitor short_runs({.smoothing = 0.3, .lost_misfit = 0.6});
+  for (int k = 0; k < 500; ++k) short_runs.update(glassy(k), 1.0, k % 5 != 4);  // 4 in a row
+  EXPECT_EQ(short_runs.lost_bound(), 0.6);
+
+  LocalizationMonitor two_levels({.smoothing = 0.3, .lost_misfit = 0.6});
+  for (int k = 0; k < 400; ++k) two_levels.update((k / 40) % 2 == 0 ? 0.02 : 0.59, 1.0, true);
+  EXPECT_NEAR(two_levels.lost_bound(), 0.8, 1e-12);  // mean + 3 sd would be 1.1
+  for (int k = 0; k < 10; ++k) two_levels.update(0.85, 1.0, true);
+  EXPECT_EQ(two_levels.state(), LocalizationState::kLost);
+
+  LocalizationMonitor fixed({.smoothing = 0.3, .lost_misfit = 0.6, .learn = false});
+  for (int k = 0; k < 200; ++k) fixed.update(glassy(k), 1.0, true);
+  EXPECT_EQ(fixed.lost_bound(), 0.6);
+}
+
 class StateOnIntel : public ::testing::Test {
  protected:
   void SetUp() override {

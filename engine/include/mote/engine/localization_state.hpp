@@ -53,11 +53,18 @@ struct LocalizationStateConfig {
   double lost_misfit = 0.6;
   /// The control chart (Shewhart's limits on the smoothed misfit, as in Roberts' EWMA chart):
   /// from the smoothed misfits of settled tracking below lost_misfit, once there are
-  /// chart_min_updates of them, lost is above max(lost_misfit, mean + chart_sigmas sd). A map
-  /// drawn with its glass or doors closed, or outdoors among vegetation, fits worse everywhere
-  /// at the true pose than a clean map does; the bound then moves up by what that map and laser
-  /// show while surely tracking, never below lost_misfit.
+  /// chart_min_updates of them, lost is above mean + chart_sigmas sd, within [lost_misfit,
+  /// chart_ceiling * lost_misfit]. A map drawn with its glass or doors closed, or outdoors among
+  /// vegetation, fits worse everywhere at the true pose than a clean map does; the bound then
+  /// moves up by what that map and laser show while surely tracking. false: lost_misfit only.
+  bool learn = true;
   double chart_sigmas = 3.0;
+  /// The most the chart may raise the bound, as a factor on lost_misfit. A run that tracks
+  /// through clean rooms (misfit 0.1) and a glassy wing (0.55) has a wide spread, and its limit
+  /// would pass 0.9: a scan matched 1-3 m from the true pose sees through 0.38-0.52 of its
+  /// beams alone (medians on the shared logs, docs/localization-state.md), its misses on top,
+  /// and a wrong map would never read lost again. The learned bounds measured are 0.63-0.72.
+  double chart_ceiling = 4.0 / 3.0;
   /// Points before the chart's limits are used: Montgomery's 20-25 samples for a chart's
   /// trial limits (Introduction to Statistical Quality Control, ch. 6).
   int chart_min_updates = 25;

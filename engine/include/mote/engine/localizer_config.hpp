@@ -79,6 +79,10 @@ struct LocalizerConfig {
   /// above which the filter is lost. Raise it for a map with much glass or many doors drawn
   /// closed; it is at most 2.
   double lost_misfit = 0.6;
+  /// Move the lost bound up, by at most a third of lost_misfit, to what this map and laser show
+  /// while surely tracking (a control chart, localization_state.hpp): a map with glass or doors
+  /// drawn closed then does not read lost wherever the robot sees through it. nav2: off.
+  bool lost_misfit_learned = true;
   /// When the filter has been lost for a few updates, add a global set (global_count(), uniform
   /// over free space) that carries half of the belief, the particles it had keeping the other
   /// half: the cost of a global initialization's first update, once, instead of injecting

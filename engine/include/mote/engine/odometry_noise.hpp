@@ -77,15 +77,19 @@ class OdometryNoiseEstimator {
   bool add(const Pose2& odom_before, const Pose2& odom_after, const Pose2& estimate_before,
            const Pose2& estimate_after, const FixUncertainty& fix = {}) noexcept;
 
-  /// Per alpha, safety times the upper confidence bound of its fit, within [alpha_min,
-  /// alpha_max]; before min_samples the prior wherever that bound is not below it. nullopt
-  /// until a residual has been added or while every alpha is still the prior.
+  /// From min_samples on, safety times the fitted alphas, within [alpha_min, alpha_max]. Before
+  /// that, per alpha, safety times the upper confidence bound of its term where that is below
+  /// the prior, else the prior; nullopt while every alpha is still the prior.
   [[nodiscard]] std::optional<OdometryAlphas> alphas() const noexcept;
   /// The fitted alphas without the safety factor and bounds, or the prior before min_samples.
   [[nodiscard]] OdometryAlphas noise() const noexcept;
 
   /// Forgets every residual.
-  void reset() noexcept { *this = OdometryNoiseEstimator(config_); }
+  void reset() noexcept {
+    rotation_ = {};
+    translation_ = {};
+    samples_ = 0.0;
+  }
 
  private:
   // Normal equations of y ~ p u + q v, accumulated with forgetting; y is the squared residual e2
@@ -97,7 +101,9 @@ class OdometryNoiseEstimator {
     void add(double u, double v, double e2, double y, double keep) noexcept;
     void solve(double& p, double& q) const noexcept;
     // Kish's effective count of the residuals behind each term, (sum w)^2 / sum w^2 with the
-    // least-squares weights w = u^2 (a term one turn determined counts once).
+    // least-squares weights w = u^2 (a term one turn determined counts once). With forgetting
+    // the exact sum w^2 would decay by keep^2; u4 decays by keep, which counts fewer: the
+    // wider bound.
     [[nodiscard]] double count_u() const noexcept { return u4 > 0.0 ? uu * uu / u4 : 0.0; }
     [[nodiscard]] double count_v() const noexcept { return v4 > 0.0 ? vv * vv / v4 : 0.0; }
   };
