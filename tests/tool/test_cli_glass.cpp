@@ -60,7 +60,7 @@ double last_lost_bound(const fs::path& csv) {
 }
 
 // The whole Intel log, likelihood field, no flags but the reference. Measured (AVX-512, GCC):
-// lost on 3.3 % of the updates and 5 re-localizations, ATE 0.032 m, no update more than 1 m
+// lost on 3.2-3.3 % of the updates and 5 re-localizations, ATE 0.032 m, no update more than 1 m
 // off, the bound 0.72 at the end;
 // with lost_misfit (0.6) as the only bound, as before the chart, lost on 10.5 % and 14
 // re-localizations, at the same ATE (the scans fit the true pose; the glass only reads lost).
