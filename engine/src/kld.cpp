@@ -56,13 +56,16 @@ double standard_normal_quantile(double p) {
   return x - u / (1.0 + 0.5 * x * u);
 }
 
+double chi_square_quantile(double dof, double z) {
+  const double a = 2.0 / (9.0 * dof);
+  return dof * std::pow(1.0 - a + std::sqrt(a) * z, 3.0);
+}
+
 std::size_t kld_sample_count(std::size_t k, const KldConfig& config) {
   if (k <= 1) return config.min_particles;
   const double z = config.use_z ? config.z : standard_normal_quantile(1.0 - config.delta);
-  const double km1 = static_cast<double>(k - 1);
-  const double a = 2.0 / (9.0 * km1);
-  const double cube = std::pow(1.0 - a + std::sqrt(a) * z, 3.0);
-  const double n = std::ceil(km1 / (2.0 * config.epsilon) * cube);
+  const double n =
+      std::ceil(chi_square_quantile(static_cast<double>(k - 1), z) / (2.0 * config.epsilon));
   const double bounded = std::clamp(n, static_cast<double>(config.min_particles),
                                     static_cast<double>(config.max_particles));
   return static_cast<std::size_t>(bounded);

@@ -113,15 +113,13 @@ OdometryAlphas OdometryNoiseEstimator::noise() const noexcept {
 
 double OdometryNoiseEstimator::upper_factor(double count) const noexcept {
   // A variance estimated from n residuals: n s^2 / sigma^2 ~ chi^2(n), so sigma^2 <= s^2 n /
-  // chi^2_{1-confidence}(n) with the given confidence; the quantile by Wilson and Hilferty
-  // (1931), chi^2_p(n) ~ n (1 - 2/(9n) + z_p sqrt(2/(9n)))^3. Below two residuals' worth no
-  // bound: the approximation is poor there, and one residual that happens to be near zero
-  // would vouch for no noise at all.
+  // chi^2_{1-confidence}(n) with the given confidence (the quantile by Wilson and Hilferty, as
+  // KLD's). Below two residuals' worth no bound: the approximation is poor there, and one
+  // residual that happens to be near zero would vouch for no noise at all.
   constexpr double kNone = std::numeric_limits<double>::infinity();
   if (!(count >= 2.0)) return kNone;
-  const double c = 2.0 / (9.0 * count);
-  const double root = 1.0 - c + lower_z_ * std::sqrt(c);
-  return root > 0.0 ? 1.0 / (root * root * root) : kNone;
+  const double quantile = chi_square_quantile(count, lower_z_);
+  return quantile > 0.0 ? count / quantile : kNone;
 }
 
 std::optional<OdometryAlphas> OdometryNoiseEstimator::alphas() const noexcept {

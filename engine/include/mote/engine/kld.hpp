@@ -35,6 +35,11 @@ struct KldConfig {
 /// relative error 1.15e-9, refined by one Halley step on erfc).
 [[nodiscard]] double standard_normal_quantile(double p);
 
+/// The chi-square quantile with `dof` degrees of freedom at the standard normal quantile z, by
+/// Wilson and Hilferty (1931): dof (1 - 2/(9 dof) + z sqrt(2/(9 dof)))^3. Zero or negative
+/// where the approximation breaks down (dof below about 2 with z well below 0).
+[[nodiscard]] double chi_square_quantile(double dof, double z);
+
 /// Fox 2003, eq. 13 (Wilson-Hilferty): n = (k-1)/(2 eps) (1 - 2/(9(k-1)) + sqrt(2/(9(k-1))) z)^3,
 /// rounded up, then clamped to [min_particles, max_particles]; k <= 1 gives min_particles.
 [[nodiscard]] std::size_t kld_sample_count(std::size_t k, const KldConfig& config);
