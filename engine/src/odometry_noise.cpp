@@ -142,7 +142,7 @@ std::optional<OdometryAlphas> OdometryNoiseEstimator::alphas() const noexcept {
     const double upper = config_.safety * alone;
     if (!std::isfinite(factor) || !(upper < prior)) return prior;
     answered = true;
-    return std::clamp(upper, config_.alpha_min, config_.alpha_max);
+    return bounded(alone);
   };
   const OdometryAlphas& prior = config_.prior;
   const Fit& r = rotation_;
